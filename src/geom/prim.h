@@ -1,0 +1,58 @@
+/* prim.h: the geometric primitives (triangle, sphere, quad) that live together in one BVH.
+ * A primitive is a plain 64-byte value; the BVH reorders the scene's primitive array in place. */
+#ifndef MCRT_PRIM_H
+#define MCRT_PRIM_H
+
+#include <stdint.h>
+
+#include "geom/ray.h"
+
+enum prim_kind { PRIM_TRIANGLE, PRIM_SPHERE, PRIM_QUAD };
+
+enum prim_flags {
+    PRIM_TWO_SIDED = 1, /* emits from both sides */
+    PRIM_FLIP = 2       /* front and back swapped: the normal points the other way */
+};
+
+struct prim {
+    uint8_t kind;     /* enum prim_kind */
+    uint8_t flags;    /* enum prim_flags */
+    uint16_t unused;
+    int32_t material; /* index into scene->materials */
+    int32_t light;    /* index into scene->lights when emitting, else -1 (set by scene prepare) */
+    int32_t normals;  /* triangle: index of its 3 shading normals in scene->normals, or -1 */
+    /* triangle: the vertices p[0..2]; front side along (p1-p0)×(p2-p0).
+     * sphere:   p[0] the centre, p[1].x the radius; front side outward.
+     * quad:     p[0] the corner, p[1] edge1, p[2] edge2; front side along edge1×edge2. */
+    vec3 p[3];
+    vec3 emit;        /* emitted radiance (Lambertian), zero when not an emitter */
+};
+
+/* What the BVH reports: distance, primitive index and the primitive's own 2D parameters
+ * (triangle: barycentrics of p1 and p2; quad: s, t along edge1, edge2; sphere: unused). */
+struct hit {
+    float t;
+    uint32_t prim;
+    float u, v;
+};
+
+/* The geometry at a hit, ready for shading. */
+struct surface {
+    vec3 p;     /* position, computed from the primitive's parameters (not o + t·d) */
+    vec3 ng;    /* unit geometric normal on the primitive's front side (flip applied) */
+    vec3 ns;    /* unit shading normal on the same side as ng (interpolated for meshes) */
+    int front;  /* 1 when the ray arrived on the front side (dot(d, ng) < 0) */
+};
+
+/* Intersection in (0, h->t): on a hit, update h (t, u, v; not prim) and return 1.
+ * Triangles use the watertight test of Woop, Benthin and Wald, JCGT 2(1) 2013. */
+int mc_prim_intersect(const struct prim *p, const struct ray *r, struct hit *h);
+struct aabb mc_prim_bounds(const struct prim *p);
+float mc_prim_area(const struct prim *p);
+/* Surface at a hit; normals is the scene's shading-normal array (used when p->normals >= 0). */
+void mc_prim_surface(const struct prim *p, const vec3 *normals, const struct ray *r,
+                     const struct hit *h, struct surface *s);
+/* A point uniform in area on p (pdf 1/area), with its front-side unit geometric normal. */
+vec3 mc_prim_sample_area(const struct prim *p, vec2 u, vec3 *n);
+
+#endif

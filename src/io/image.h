@@ -1,0 +1,22 @@
+/* image.h: reading and writing float RGB images (PNG, OpenEXR, PFM), chosen by file suffix.
+ * The only module that touches libpng or OpenEXR; linear to sRGB conversion happens only here. */
+#ifndef MCRT_IMAGE_H
+#define MCRT_IMAGE_H
+
+#include "core/diag.h"
+
+struct image {
+    int width, height;
+    float *rgb;      /* 3 floats per pixel, linear, rows top to bottom; owned */
+};
+
+/* Whether this build supports a suffix ("png", "exr", "pfm", with or without the dot). */
+int mc_image_supported(const char *suffix);
+/* Write rgb (w·h·3 floats, linear) to path: to a temporary file in the same folder, renamed over
+ * path only when complete. PNG gets 8-bit sRGB with an sRGB chunk; EXR float R,G,B; PFM float. */
+mcrt_status mc_image_write(const char *path, const float *rgb, int w, int h, mc_diag *d);
+/* Read an image into im (linear RGB; PNG is decoded from sRGB). */
+mcrt_status mc_image_read(const char *path, struct image *im, mc_diag *d);
+void mc_image_free(struct image *im);
+
+#endif

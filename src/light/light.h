@@ -1,0 +1,59 @@
+/* light.h: emitters — point lights, area lights (emitting primitives) and the constant
+ * environment — with sampling by solid angle and power-proportional light selection. */
+#ifndef MCRT_LIGHT_H
+#define MCRT_LIGHT_H
+
+#include <stddef.h>
+
+#include "geom/prim.h"
+
+struct scene;
+
+enum light_kind { LIGHT_POINT, LIGHT_AREA, LIGHT_ENVIRONMENT };
+
+struct light {
+    enum light_kind kind;
+    vec3 position;   /* point */
+    vec3 intensity;  /* point: W/sr; environment: radiance */
+    uint32_t prim;   /* area: the emitting primitive */
+    float power;     /* scalar power (mean over channels) used for selection; set by prepare */
+};
+
+/* Discrete distribution over the lights in proportion to power (a CDF searched by bisection). */
+struct light_table {
+    float *cdf;      /* cdf[i] = P(light < i+1); cdf[n-1] = 1 */
+    size_t count;
+};
+
+/* A sample toward a light from a shading point. */
+struct light_sample {
+    vec3 wi;         /* unit direction toward the light */
+    float dist;      /* distance to the sampled point (INFINITY for the environment) */
+    vec3 L;          /* radiance arriving along -wi (before visibility) */
+    float pdf;       /* solid-angle pdf of wi given this light; for a point light, 1 (delta) */
+    int delta;       /* the light is a delta distribution (point light): no MIS */
+};
+
+/* Build the selection table. Returns 0 on success, -1 when out of memory. */
+int mc_light_table_build(struct light_table *t, const struct light *lights, size_t n);
+void mc_light_table_free(struct light_table *t);
+/* Choose a light index for u in [0,1); *pmf receives its probability. -1 when there is none. */
+int mc_light_table_pick(const struct light_table *t, float u, float *pmf);
+/* Probability of choosing light i. */
+float mc_light_table_pmf(const struct light_table *t, size_t i);
+
+/* Scalar power of a light (mean over RGB channels), for selection. */
+float mc_light_power(const struct scene *s, const struct light *l);
+/* Sample a direction toward l from point p (with unit geometric normal n there, only used to
+ * avoid sampling inside the surface; may be zero). Returns 0 when no sample (pdf 0). */
+int mc_light_sample(const struct scene *s, const struct light *l, vec3 p, vec2 u,
+                    struct light_sample *out);
+/* Solid-angle pdf that mc_light_sample would have given direction wi from p, given that the
+ * ray p + t·wi first hits light l's primitive at distance t with surface sf (area lights), or
+ * escapes (environment). */
+float mc_light_pdf(const struct scene *s, const struct light *l, vec3 p, vec3 wi, float t,
+                   const struct surface *sf);
+/* Radiance emitted by primitive pr toward direction -wi at surface sf (0 if the side does not emit). */
+vec3 mc_light_emitted(const struct prim *pr, const struct surface *sf, vec3 wi);
+
+#endif

@@ -1,0 +1,91 @@
+/* scene.c: the scene container: defaults, growable arrays, lookup by name, and release. */
+#include "scene/scene.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+void mc_scene_init(struct scene *s)
+{
+    struct material def;
+    memset(s, 0, sizeof *s);
+    s->film.width = 512;
+    s->film.height = 512;
+    s->film.spp = 16;
+    s->film.sampler = SAMPLER_STRATIFIED;
+    s->film.filter = FILTER_BOX;
+    s->camera.eye = v3(0.0f, 0.0f, 5.0f);
+    s->camera.look = v3(0.0f, 0.0f, 0.0f);
+    s->camera.up = v3(0.0f, 1.0f, 0.0f);
+    s->camera.fov = 40.0f;
+    s->integrator.method = INTEGRATOR_PATH;
+    s->integrator.max_depth = -1;
+    s->integrator.rr_depth = 5;
+    s->env_light = -1;
+    memset(&def, 0, sizeof def);
+    def.kind = MATERIAL_DIFFUSE;
+    def.color = v3s(0.8f);
+    def.ior = 1.5f;
+    mc_scene_add_material(s, &def); /* cannot fail to matter: a failed add leaves count 0, caught by prepare */
+}
+
+void mc_scene_free(struct scene *s)
+{
+    mc_bvh_free(&s->bvh);
+    mc_light_table_free(&s->light_table);
+    free(s->materials);
+    free(s->prims);
+    free(s->normals);
+    free(s->lights);
+    memset(s, 0, sizeof *s);
+}
+
+/* Append one element of size elem to a growable array, doubling its capacity. Returns the new
+ * index or -1 when out of memory or past INT32_MAX elements. */
+static int push(void **array, size_t *count, size_t *cap, size_t elem, const void *value)
+{
+    if (*count >= 0x7fffffff)
+        return -1;
+    if (*count == *cap) {
+        size_t ncap = *cap ? *cap * 2 : 16;
+        void *p = realloc(*array, ncap * elem);
+        if (!p)
+            return -1;
+        *array = p;
+        *cap = ncap;
+    }
+    memcpy((char *)*array + *count * elem, value, elem);
+    return (int)(*count)++;
+}
+
+int mc_scene_add_material(struct scene *s, const struct material *m)
+{
+    return push((void **)&s->materials, &s->material_count, &s->material_cap, sizeof *m, m);
+}
+
+int mc_scene_add_prim(struct scene *s, const struct prim *p)
+{
+    return push((void **)&s->prims, &s->prim_count, &s->prim_cap, sizeof *p, p);
+}
+
+int mc_scene_add_normals(struct scene *s, vec3 n0, vec3 n1, vec3 n2)
+{
+    int first = push((void **)&s->normals, &s->normal_count, &s->normal_cap, sizeof n0, &n0);
+    if (first < 0 || push((void **)&s->normals, &s->normal_count, &s->normal_cap, sizeof n1, &n1) < 0
+        || push((void **)&s->normals, &s->normal_count, &s->normal_cap, sizeof n2, &n2) < 0)
+        return -1;
+    return first;
+}
+
+int mc_scene_add_light(struct scene *s, const struct light *l)
+{
+    return push((void **)&s->lights, &s->light_count, &s->light_cap, sizeof *l, l);
+}
+
+int mc_scene_find_material(const struct scene *s, const char *name)
+{
+    size_t i;
+    for (i = 1; i < s->material_count; i++)
+        if (strcmp(s->materials[i].name, name) == 0)
+            return (int)i;
+    return -1;
+}

@@ -1,0 +1,89 @@
+/* scene.h: the parsed scene, the owning container every later stage reads.
+ * The parser fills it (mc_scene_* adders), mc_scene_prepare builds the BVH and light table, and
+ * from then on it is read-only and shared by all render threads. */
+#ifndef MCRT_SCENE_H
+#define MCRT_SCENE_H
+
+#include <stddef.h>
+
+#include "core/diag.h"
+#include "geom/bvh.h"
+#include "light/light.h"
+
+enum sampler_kind { SAMPLER_RANDOM, SAMPLER_STRATIFIED };
+enum filter_kind { FILTER_BOX };
+enum integrator_kind { INTEGRATOR_PATH, INTEGRATOR_DIRECT };
+enum material_kind { MATERIAL_DIFFUSE, MATERIAL_MIRROR, MATERIAL_GLASS };
+
+struct film_desc {
+    int width, height, spp;          /* 512, 512, 16 */
+    enum sampler_kind sampler;       /* stratified */
+    enum filter_kind filter;         /* box */
+};
+
+struct camera_desc {
+    vec3 eye, look, up;              /* (0 0 5), (0 0 0), (0 1 0) */
+    float fov;                       /* full vertical angle in degrees: 40 */
+};
+
+struct integrator_desc {
+    enum integrator_kind method;     /* path */
+    int max_depth;                   /* bounces; -1 = unlimited (Russian roulette ends paths) */
+    int rr_depth;                    /* Russian roulette starts after this many bounces: 5 */
+};
+
+struct material {
+    char name[64];
+    enum material_kind kind;
+    vec3 color;                      /* diffuse albedo, mirror reflectance, or glass tint */
+    float ior;                       /* glass: index of refraction inside / outside (1.5) */
+};
+
+struct scene {
+    struct film_desc film;
+    struct camera_desc camera;
+    struct integrator_desc integrator;
+
+    struct material *materials;      /* [0] is the default: diffuse 0.8, named "" */
+    size_t material_count, material_cap;
+
+    struct prim *prims;
+    size_t prim_count, prim_cap;
+    vec3 *normals;                   /* shading normals, 3 per smooth triangle */
+    size_t normal_count, normal_cap;
+
+    struct light *lights;            /* point lights as parsed; area and environment added by prepare */
+    size_t light_count, light_cap;
+    int has_environment;             /* an environment block was given */
+    vec3 environment;                /* its radiance */
+
+    /* Built by mc_scene_prepare: */
+    struct bvh bvh;
+    struct light_table light_table;  /* power-proportional light selection */
+    int env_light;                   /* index of the environment light or -1 */
+    int prepared;
+};
+
+/* An empty scene holding all defaults (and the default material). */
+void mc_scene_init(struct scene *s);
+void mc_scene_free(struct scene *s);
+
+/* Adders: each returns the new element's index, or -1 when out of memory. */
+int mc_scene_add_material(struct scene *s, const struct material *m);
+int mc_scene_add_prim(struct scene *s, const struct prim *p);
+int mc_scene_add_normals(struct scene *s, vec3 n0, vec3 n1, vec3 n2);
+int mc_scene_add_light(struct scene *s, const struct light *l);
+/* Index of the material with this name, or -1. */
+int mc_scene_find_material(const struct scene *s, const char *name);
+
+/* Build the BVH and the light table; adds the default white sky when the scene has no light.
+ * Idempotent. */
+mcrt_status mc_scene_prepare(struct scene *s, mc_diag *d);
+
+/* Parse scene text (parse.c). name is used in messages; base_dir is where relative OBJ paths start
+ * (NULL = current directory). On failure the message is "name:line:col: what is wrong" and s is
+ * left in a state that mc_scene_free handles. */
+mcrt_status mc_scene_parse(struct scene *s, const char *text, size_t len, const char *name,
+                           const char *base_dir, mc_diag *d);
+
+#endif
