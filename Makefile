@@ -83,7 +83,7 @@ $(O)/tests/%: tests/tools/%.c $(O)/libmcrt.a
 
 # Set-up for a fresh Debian machine: install what the build and tests need when root, otherwise
 # print the exact command and stop. SETUP=0 skips it (for machines that are not Debian).
-DEBS = pkgconf libpng-dev libopenexr-dev groff-base
+DEBS = pkgconf libpng-dev libopenexr-dev openexr groff-base
 setup:
 	@if [ "$(SETUP)" = 1 ] && command -v dpkg-query >/dev/null 2>&1; then \
 	  missing=""; for p in $(DEBS); do \

@@ -92,7 +92,7 @@ const float *mcrt_render_pixels(const mcrt_render *r, int *width, int *height);
 /* Write the image; the format is chosen by the suffix: .png (8-bit sRGB), .exr (float), .pfm.
  * The file is written to a temporary name in the same folder and renamed when complete, so an
  * existing file is never left half-written. */
-mcrt_status mcrt_render_save(const mcrt_render *r, const char *path);
+mcrt_status mcrt_render_save(mcrt_render *r, const char *path);
 
 typedef struct mcrt_stats {
     int width, height, spp, threads;

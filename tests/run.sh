@@ -10,7 +10,7 @@ log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 for t in "$O"/tests/test_* tests/*.sh; do
     [ -f "$t" ] || continue
-    case "$t" in tests/run.sh) continue ;; esac
+    case "$t" in tests/run.sh|*.d) continue ;; esac
     name=$(basename "$t")
     start=$(date +%s)
     case "$t" in

@@ -3,9 +3,20 @@
  * Rules, written once here: directions are in the local shading frame (z = shading normal on the
  * primitive's front side); wo (toward the viewer) and wi (toward the light) both point away from
  * the surface; eval returns f without the cosine; pdf is per unit solid angle of wi; sample
- * returns the weight f·|cos θi| / pdf. Delta lobes (mirror, smooth glass) have eval = pdf = 0 and
- * are reached only through sample, which sets delta. Opaque materials behave the same on both
- * faces (wo.z < 0 is handled by mirroring); glass's front side (z > 0) is its outside. */
+ * returns the weight f·|cos θi| / pdf. Opaque materials (diffuse, mirror, metal, plastic) behave
+ * the same on both faces (wo.z < 0 is handled by mirroring); glass's front side (z > 0) is its
+ * outside.
+ *
+ * Delta lobes (mirror, smooth glass, smooth metal, the smooth coat of plastic) have no density:
+ * eval and pdf leave them out, and only sample reaches them, setting delta. A BSDF may mix a
+ * delta lobe with non-delta ones (plastic with alpha 0: a delta coat reflection over a diffuse
+ * base). Then mc_bsdf_is_delta is 0, eval and pdf cover the non-delta lobes only (pdf already
+ * scaled by the probability of choosing them), and sample returns either kind of lobe: a delta
+ * sample has pdf = the discrete probability of that lobe and must be treated as specular (no
+ * MIS: no other strategy can produce its direction), a non-delta sample has pdf = mc_bsdf_pdf.
+ *
+ * Roughness: metal, glass and plastic take the GGX α of struct material (α = roughness²).
+ * α below MC_BSDF_SMOOTH_ALPHA is treated as a perfectly smooth (delta) interface. */
 #ifndef MCRT_BSDF_H
 #define MCRT_BSDF_H
 
@@ -13,10 +24,21 @@
 
 struct material;
 
+/* pbrt-v4's threshold for an "effectively smooth" TrowbridgeReitzDistribution. A lobe of
+ * width ~α rad = 0.06° is at most a pixel wide in any ordinary view, light sampling cannot
+ * find such a lobe's light (it only adds variance), and the near-delta D ~ 1/(πα²) ≥ 3e5 turns
+ * every such light sample into a firefly; the delta path is exact and noise-free instead. */
+#define MC_BSDF_SMOOTH_ALPHA 1e-3f
+
 struct bsdf {
     int kind;        /* enum material_kind */
-    vec3 color;      /* albedo / reflectance / tint */
-    float ior;       /* glass */
+    vec3 color;      /* albedo / mirror reflectance / glass tint / plastic base albedo */
+    float ior;       /* glass, plastic: inside over outside */
+    float alpha;     /* GGX α (metal, glass, plastic); 0: smooth (set for α < MC_BSDF_SMOOTH_ALPHA) */
+    vec3 eta, k;     /* metal: complex index of refraction η + ik per channel */
+    vec3 albedo;     /* plastic: directional albedo of the base seen through a smooth coat, per
+                        unit coat transmittance (plastic.c) */
+    float fdr;       /* plastic: the coat's hemispherical-average Fresnel reflectance from outside */
 };
 
 struct bsdf_sample {
@@ -28,7 +50,8 @@ struct bsdf_sample {
 };
 
 void mc_bsdf_init(struct bsdf *b, const struct material *m);
-/* Whether every lobe is a delta lobe (no light sampling is useful then). */
+/* Whether every lobe is a delta lobe (no light sampling is useful then): mirror, smooth glass
+ * (or glass of ior 1, which is no interface at all), smooth metal. */
 int mc_bsdf_is_delta(const struct bsdf *b);
 vec3 mc_bsdf_eval(const struct bsdf *b, vec3 wo, vec3 wi);
 float mc_bsdf_pdf(const struct bsdf *b, vec3 wo, vec3 wi);
@@ -39,5 +62,11 @@ int mc_bsdf_sample(const struct bsdf *b, vec3 wo, float uc, vec2 u, struct bsdf_
  * eq. 9.6): cos_i is the cosine on the incident side (negative: incidence from inside), eta the
  * ratio of inside to outside ior. Returns 1 under total internal reflection. */
 float mc_fresnel_dielectric(float cos_i, float eta);
+/* Exact unpolarised Fresnel reflectance of a conductor of complex ior η + ik (per channel, relative
+ * to the outside) at incidence cosine cos_i in [0, 1] (pbrt-v4 FrComplex). */
+vec3 mc_fresnel_conductor(float cos_i, vec3 eta, vec3 k);
+/* The η = 1 and k of a metal whose reflectance at normal incidence is r (each channel clamped
+ * to [0, 0.9999] so that k stays finite); for the scene parser's "metal RGB" form. */
+void mc_metal_from_reflectance(vec3 r, vec3 *eta, vec3 *k);
 
 #endif

@@ -47,6 +47,19 @@ struct surface {
 /* Intersection in (0, h->t): on a hit, update h (t, u, v; not prim) and return 1.
  * Triangles use the watertight test of Woop, Benthin and Wald, JCGT 2(1) 2013. */
 int mc_prim_intersect(const struct prim *p, const struct ray *r, struct hit *h);
+
+/* A ray with the per-ray constants of the watertight triangle test (Woop et al. 2013, §3: the
+ * axis permutation that makes z the dominant direction axis, and the shear that maps the ray onto
+ * +z), so that a traversal computes them once per ray rather than once per triangle. */
+struct ray_prep {
+    struct ray r;
+    int kx, ky, kz;
+    float sx, sy, sz;
+};
+void mc_ray_prep(struct ray_prep *q, const struct ray *r);
+/* mc_prim_intersect with the constants precomputed; the results are bitwise the same. */
+int mc_prim_intersect_prep(const struct prim *p, const struct ray_prep *q, struct hit *h);
+
 struct aabb mc_prim_bounds(const struct prim *p);
 float mc_prim_area(const struct prim *p);
 /* Surface at a hit; normals is the scene's shading-normal array (used when p->normals >= 0). */

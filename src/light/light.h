@@ -29,6 +29,8 @@ struct light_table {
 struct light_sample {
     vec3 wi;         /* unit direction toward the light */
     float dist;      /* distance to the sampled point (INFINITY for the environment) */
+    vec3 point;      /* the sampled point (point and area lights) */
+    vec3 normal;     /* its unit normal facing the shading point (area lights), else zero */
     vec3 L;          /* radiance arriving along -wi (before visibility) */
     float pdf;       /* solid-angle pdf of wi given this light; for a point light, 1 (delta) */
     int delta;       /* the light is a delta distribution (point light): no MIS */
@@ -44,8 +46,8 @@ float mc_light_table_pmf(const struct light_table *t, size_t i);
 
 /* Scalar power of a light (mean over RGB channels), for selection. */
 float mc_light_power(const struct scene *s, const struct light *l);
-/* Sample a direction toward l from point p (with unit geometric normal n there, only used to
- * avoid sampling inside the surface; may be zero). Returns 0 when no sample (pdf 0). */
+/* Sample a direction toward l from point p. Returns 0 when there is no sample (pdf 0, or the
+ * sampled point shows p its non-emitting side). */
 int mc_light_sample(const struct scene *s, const struct light *l, vec3 p, vec2 u,
                     struct light_sample *out);
 /* Solid-angle pdf that mc_light_sample would have given direction wi from p, given that the
@@ -53,7 +55,8 @@ int mc_light_sample(const struct scene *s, const struct light *l, vec3 p, vec2 u
  * escapes (environment). */
 float mc_light_pdf(const struct scene *s, const struct light *l, vec3 p, vec3 wi, float t,
                    const struct surface *sf);
-/* Radiance emitted by primitive pr toward direction -wi at surface sf (0 if the side does not emit). */
-vec3 mc_light_emitted(const struct prim *pr, const struct surface *sf, vec3 wi);
+/* Radiance emitted by primitive pr back along the ray that found surface sf (0 when the side the
+ * ray arrived on does not emit). */
+vec3 mc_light_emitted(const struct prim *pr, const struct surface *sf);
 
 #endif

@@ -4,6 +4,7 @@
 #ifndef MCRT_WARP_H
 #define MCRT_WARP_H
 
+#include "core/rng.h"
 #include "core/vec.h"
 
 /* Cosine-weighted hemisphere (Malley's method via the concentric disk); pdf cosθ/π. */
@@ -21,6 +22,11 @@ vec3 mc_warp_uniform_cone(vec2 u, float cos_max, float sin2_max);
 float mc_warp_uniform_cone_pdf(float cos_max, float sin2_max);
 /* Concentric map of the square onto the unit disk (Shirley and Chiu 1997); pdf 1/π. */
 vec2 mc_warp_concentric_disk(vec2 u);
+/* Uniform point on the unit disk by rejection from the square [-1, 1]² (pdf 1/π). Each attempt
+ * draws two pcg32_float values from rng; an attempt succeeds with probability π/4, so a sample
+ * costs 4/π ≈ 1.27 attempts on average (geometric). It consumes a stream, not a point of
+ * [0,1)², so it cannot carry stratification: prefer mc_warp_concentric_disk where u is stratified. */
+vec2 mc_warp_rejection_disk(pcg32 *rng);
 /* Uniform barycentrics (b1, b2) on a triangle (Heitz 2019 low-distortion map or the square-root
  * map); b0 = 1 − b1 − b2. */
 vec2 mc_warp_triangle(vec2 u);

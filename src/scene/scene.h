@@ -13,7 +13,7 @@
 enum sampler_kind { SAMPLER_RANDOM, SAMPLER_STRATIFIED };
 enum filter_kind { FILTER_BOX };
 enum integrator_kind { INTEGRATOR_PATH, INTEGRATOR_DIRECT };
-enum material_kind { MATERIAL_DIFFUSE, MATERIAL_MIRROR, MATERIAL_GLASS };
+enum material_kind { MATERIAL_DIFFUSE, MATERIAL_MIRROR, MATERIAL_GLASS, MATERIAL_METAL, MATERIAL_PLASTIC };
 
 struct film_desc {
     int width, height, spp;          /* 512, 512, 16 */
@@ -35,8 +35,11 @@ struct integrator_desc {
 struct material {
     char name[64];
     enum material_kind kind;
-    vec3 color;                      /* diffuse albedo, mirror reflectance, or glass tint */
-    float ior;                       /* glass: index of refraction inside / outside (1.5) */
+    vec3 color;                      /* diffuse albedo, mirror reflectance, glass tint,
+                                        metal reflectance at normal incidence, plastic base */
+    float ior;                       /* glass, plastic: index of refraction inside / outside (1.5) */
+    float alpha;                     /* GGX α = roughness² (metal, glass, plastic); 0 = smooth */
+    vec3 eta, k;                     /* metal: complex index of refraction per channel */
 };
 
 struct scene {

@@ -1,0 +1,62 @@
+/* bsdf_impl.h: the per-material halves of bsdf.h and their shared optics, private to src/bsdf.
+ * bsdf.c dispatches on the material kind to these; each follows the rules at the top of bsdf.h.
+ * Microfacet code sees only α >= MC_BSDF_SMOOTH_ALPHA (mc_bsdf_init sends smaller α to the
+ * delta lobes). */
+#ifndef MCRT_BSDF_IMPL_H
+#define MCRT_BSDF_IMPL_H
+
+#include "bsdf/bsdf.h"
+
+/* ---- interface optics (fresnel.c) ---- */
+
+/* w reflected about the unit normal n. */
+vec3 mc_reflect(vec3 w, vec3 n);
+/* w refracted through the unit normal n, which must be on w's side (w·n >= 0), into a medium of
+ * relative ior eta (far side over w's side). Returns 0 under total internal reflection. */
+int mc_refract(vec3 w, vec3 n, float eta, vec3 *wt);
+/* ∫ F(μ) 2μ dμ over the hemisphere: the cosine-weighted average of mc_fresnel_dielectric from
+ * the outside of an interface of relative ior eta >= 1. */
+double mc_fresnel_diffuse(double eta);
+
+/* ---- the GGX microfacet distribution (ggx.c); directions unit, w.z != 0 ---- */
+
+/* Normal distribution D(wm) (0 for wm.z <= 0). */
+float mc_ggx_d(float alpha, vec3 wm);
+/* Smith masking G1(w) = 1/(1 + Λ(w)). */
+float mc_ggx_g1(float alpha, vec3 w);
+/* Height-correlated Smith masking–shadowing G2 = 1/(1 + Λ(wo) + Λ(wi)). */
+float mc_ggx_g2(float alpha, vec3 wo, vec3 wi);
+/* A normal sampled from the distribution of normals visible from wo (wo.z > 0), and that
+ * distribution's density D_wo(wm) = G1(wo) max(0, wo·wm) D(wm) / wo.z. */
+vec3 mc_ggx_sample_visible(float alpha, vec3 wo, vec2 u);
+float mc_ggx_visible_pdf(float alpha, vec3 wo, vec3 wm);
+
+/* ---- materials ---- */
+
+/* Lambertian (diffuse.c): f = albedo/π on wo's side of the surface, 0 across it. */
+vec3 mc_diffuse_eval(const struct bsdf *b, vec3 wo, vec3 wi);
+float mc_diffuse_pdf(vec3 wo, vec3 wi);
+int mc_diffuse_sample(const struct bsdf *b, vec3 wo, vec2 u, struct bsdf_sample *out);
+
+/* Delta lobes (specular.c): only sampling is meaningful. mc_specular_reflection is the mirror
+ * direction of wo about the normal as a delta sample of the given weight and probability. */
+int mc_specular_reflection(vec3 wo, vec3 weight, float pdf, struct bsdf_sample *out);
+int mc_glass_sample(const struct bsdf *b, vec3 wo, float uc, struct bsdf_sample *out);
+
+/* Metal (conductor.c): GGX reflection with conductor Fresnel; α = 0 is a delta reflection. */
+vec3 mc_conductor_eval(const struct bsdf *b, vec3 wo, vec3 wi);
+float mc_conductor_pdf(const struct bsdf *b, vec3 wo, vec3 wi);
+int mc_conductor_sample(const struct bsdf *b, vec3 wo, vec2 u, struct bsdf_sample *out);
+
+/* Rough glass (dielectric.c), α > 0: GGX reflection and refraction (Walter et al. 2007). */
+vec3 mc_dielectric_eval(const struct bsdf *b, vec3 wo, vec3 wi);
+float mc_dielectric_pdf(const struct bsdf *b, vec3 wo, vec3 wi);
+int mc_dielectric_sample(const struct bsdf *b, vec3 wo, float uc, vec2 u, struct bsdf_sample *out);
+
+/* Plastic (plastic.c): a diffuse base under a dielectric coat, smooth (α = 0) or GGX. */
+void mc_plastic_init(struct bsdf *b);
+vec3 mc_plastic_eval(const struct bsdf *b, vec3 wo, vec3 wi);
+float mc_plastic_pdf(const struct bsdf *b, vec3 wo, vec3 wi);
+int mc_plastic_sample(const struct bsdf *b, vec3 wo, float uc, vec2 u, struct bsdf_sample *out);
+
+#endif

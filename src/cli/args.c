@@ -1,0 +1,139 @@
+/* args.c: option and number parsing for the mcrt command (see args.h). GNU-style long options,
+ * POSIX-style short ones (POSIX.1-2017 XBD 12.2, Utility Syntax Guidelines). */
+#include "cli/args.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+void mc_args_init(struct arg_parser *p, int argc, char **argv)
+{
+    p->argc = argc;
+    p->argv = argv;
+    p->next = 1;
+    p->options_done = 0;
+}
+
+static int find_long(const struct arg_spec *specs, const char *name, size_t len)
+{
+    int i;
+    for (i = 0; specs[i].name || specs[i].letter; i++)
+        if (specs[i].name && strlen(specs[i].name) == len && strncmp(specs[i].name, name, len) == 0)
+            return i;
+    return -1;
+}
+
+static int find_letter(const struct arg_spec *specs, char letter)
+{
+    int i;
+    for (i = 0; specs[i].name || specs[i].letter; i++)
+        if (specs[i].letter && specs[i].letter == letter)
+            return i;
+    return -1;
+}
+
+/* The option as messages name it: "--spp" or "-o". */
+static const char *label(const struct arg_spec *s, char *buf, size_t size)
+{
+    if (s->name)
+        snprintf(buf, size, "--%s", s->name);
+    else
+        snprintf(buf, size, "-%c", s->letter);
+    return buf;
+}
+
+int mc_args_next(struct arg_parser *p, const struct arg_spec *specs, const char **value)
+{
+    const char *arg, *eq = NULL;
+    char buf[64];
+    int i;
+
+    *value = NULL;
+    if (p->next >= p->argc)
+        return ARG_END;
+    arg = p->argv[p->next++];
+    if (p->options_done || arg[0] != '-' || arg[1] == '\0') { /* "-" alone is an operand */
+        *value = arg;
+        return ARG_OPERAND;
+    }
+    if (strcmp(arg, "--") == 0) {
+        p->options_done = 1;
+        return mc_args_next(p, specs, value);
+    }
+    if (arg[1] == '-') { /* --name or --name=value */
+        eq = strchr(arg + 2, '=');
+        i = find_long(specs, arg + 2, eq ? (size_t)(eq - arg - 2) : strlen(arg + 2));
+        if (i < 0) {
+            fprintf(stderr, "mcrt: unknown option '%.*s' (see mcrt --help)\n",
+                    eq ? (int)(eq - arg) : (int)strlen(arg), arg);
+            return ARG_ERROR;
+        }
+        if (eq && !specs[i].has_value) {
+            fprintf(stderr, "mcrt: %s takes no value\n", label(&specs[i], buf, sizeof buf));
+            return ARG_ERROR;
+        }
+        if (eq)
+            *value = eq + 1;
+    } else { /* -x, -xVALUE or -x VALUE */
+        i = find_letter(specs, arg[1]);
+        if (i < 0 || (arg[2] && !specs[i].has_value)) {
+            fprintf(stderr, "mcrt: unknown option '%s' (see mcrt --help)\n", arg);
+            return ARG_ERROR;
+        }
+        if (arg[2])
+            *value = arg + 2;
+    }
+    if (specs[i].has_value && !*value) {
+        if (p->next >= p->argc) {
+            fprintf(stderr, "mcrt: %s needs a value\n", label(&specs[i], buf, sizeof buf));
+            return ARG_ERROR;
+        }
+        *value = p->argv[p->next++];
+    }
+    return i;
+}
+
+/* Digits only: strtoull alone would take "-1" (as 2^64-1), " 1", "+1" and "0x10". */
+static int parse_decimal(const char *text, unsigned long long *out)
+{
+    const char *c;
+    char *end;
+    for (c = text; *c; c++)
+        if (!isdigit((unsigned char)*c))
+            return 0;
+    if (c == text)
+        return 0;
+    errno = 0;
+    *out = strtoull(text, &end, 10);
+    return errno == 0;
+}
+
+int mc_args_int(const char *name, const char *text, int min, int max, int *out)
+{
+    unsigned long long v;
+    if (!parse_decimal(text, &v) || v < (unsigned long long)min) {
+        fprintf(stderr, "mcrt: --%s: expected a %s integer, got '%s'\n", name,
+                min > 0 ? "positive" : "non-negative", text);
+        return 0;
+    }
+    if (v > (unsigned long long)max) {
+        fprintf(stderr, "mcrt: --%s: %s is too large (at most %d)\n", name, text, max);
+        return 0;
+    }
+    *out = (int)v;
+    return 1;
+}
+
+int mc_args_u64(const char *name, const char *text, uint64_t *out)
+{
+    unsigned long long v;
+    if (!parse_decimal(text, &v)) { /* unsigned long long has at least 64 bits */
+        fprintf(stderr, "mcrt: --%s: expected an integer from 0 to %llu, got '%s'\n", name,
+                (unsigned long long)UINT64_MAX, text);
+        return 0;
+    }
+    *out = (uint64_t)v;
+    return 1;
+}

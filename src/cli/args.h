@@ -1,0 +1,37 @@
+/* args.h: command-line parsing for mcrt's commands: long options as "--name value" or
+ * "--name=value", one-letter aliases ("-o FILE", "-oFILE"), "--" ending the options, and strict
+ * numbers. Errors are printed to stderr as one line starting "mcrt: "; nothing else is printed. */
+#ifndef MCRT_ARGS_H
+#define MCRT_ARGS_H
+
+#include <stdint.h>
+
+/* One option a command accepts. A table of them ends with {NULL, 0, 0}. */
+struct arg_spec {
+    const char *name; /* "spp" for --spp, or NULL for a one-letter option only */
+    char letter;      /* 'o' for -o, or 0 for none */
+    int has_value;    /* 1: takes a value; 0: a flag */
+};
+
+/* Results of mc_args_next besides an index into the spec table. */
+enum { ARG_END = -1, ARG_OPERAND = -2, ARG_ERROR = -3 };
+
+struct arg_parser {
+    int argc, next;
+    char **argv;
+    int options_done; /* after "--" everything is an operand */
+};
+
+/* Start parsing argv[1..argc-1]. */
+void mc_args_init(struct arg_parser *p, int argc, char **argv);
+/* The next option's index in specs (*value: its value, or NULL for a flag), ARG_OPERAND (*value:
+ * the operand), ARG_END, or ARG_ERROR once the problem has been printed (unknown option,
+ * missing value, value given to a flag). */
+int mc_args_next(struct arg_parser *p, const struct arg_spec *specs, const char **value);
+/* Parse text as a decimal integer in [min, max] (min is 0 or 1) into *out; on failure print
+ * "mcrt: --NAME: expected a positive integer, got 'TEXT'" (or the range) and return 0. */
+int mc_args_int(const char *name, const char *text, int min, int max, int *out);
+/* Parse text as a decimal integer in [0, 2^64 - 1]; like mc_args_int. */
+int mc_args_u64(const char *name, const char *text, uint64_t *out);
+
+#endif

@@ -1,0 +1,427 @@
+/* main.c: the mcrt command: parse options, load the scene, render with a progress bar, write the
+ * image and optional JSON statistics. A thin client of the public API (mcrt.h) and nothing else. */
+#include <errno.h>
+#include <inttypes.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "cli/args.h"
+#include "mcrt.h"
+
+/* Exit statuses, as documented in --help and mcrt(1). */
+enum { EXIT_OK = 0, EXIT_FAIL = 1, EXIT_USAGE = 2 };
+
+static const char usage[] =
+    "usage: mcrt [render] [options] SCENE\n"
+    "Render the scene file SCENE (see mcrt(5)) and write the image.\n"
+    "\n"
+    "options:\n"
+    "  -o FILE             the image to write; its suffix picks the format: .png (8-bit sRGB),\n"
+    "                      .exr (32-bit float) or .pfm (32-bit float). Default: SCENE's name\n"
+    "                      with .png (.pfm if built without PNG), in the current folder\n"
+    "  --spp N             samples per pixel (default: the scene's)\n"
+    "  --threads N         worker threads; 0 means one per core (default: 0)\n"
+    "  --seed N            random seed, 0 to 2^64-1 (default: 0); the image depends only on\n"
+    "                      the scene, the options and the seed, not on the number of threads\n"
+    "  --integrator NAME   path or direct (default: the scene's)\n"
+    "  --stats FILE        write statistics as JSON (size, spp, threads, seconds, rays, NaNs)\n"
+    "  --quiet             print nothing but errors\n"
+    "  --help              print this help and exit\n"
+    "  --version           print the version and the built-in image formats, and exit\n"
+    "An option's value may also follow an equals sign, as in --spp=64.\n"
+    "\n"
+    "exit status:\n"
+    "  0  success\n"
+    "  1  failure: the image or statistics could not be written, out of memory\n"
+    "  2  bad input: bad options, a missing or malformed scene, an unsupported image format\n";
+
+/* Image formats, for --version and for explaining a format this build lacks. */
+static const struct {
+    const char *suffix, *library, *package;
+} formats[] = {
+    {"png", "libpng", "libpng-dev"}, {"exr", "OpenEXR", "libopenexr-dev"}, {"pfm", NULL, NULL}};
+#define NFORMATS (sizeof formats / sizeof formats[0])
+
+static int print_version(void)
+{
+    size_t i;
+    printf("mcrt %s\nimage formats:", mcrt_version());
+    for (i = 0; i < NFORMATS; i++)
+        if (mcrt_format_supported(formats[i].suffix))
+            printf(" %s", formats[i].suffix);
+    printf("\n");
+    return fflush(stdout) == 0 ? EXIT_OK : EXIT_FAIL;
+}
+
+/* The suffix of path's last component without the dot ("" if none). */
+static const char *suffix_of(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    const char *dot = strrchr(slash ? slash + 1 : path, '.');
+    return dot ? dot + 1 : "";
+}
+
+/* Whether the image file can be written, known before spending time on rendering. */
+static int check_output(const char *path)
+{
+    const char *suffix = suffix_of(path);
+    size_t i;
+    if (mcrt_format_supported(suffix))
+        return 1;
+    for (i = 0; i < NFORMATS; i++)
+        if (formats[i].library && strcasecmp(suffix, formats[i].suffix) == 0) {
+            fprintf(stderr, "mcrt: cannot write '%s': this mcrt was built without %s "
+                            "(install %s and rebuild)\n",
+                    path, formats[i].library, formats[i].package);
+            return 0;
+        }
+    if (suffix[0])
+        fprintf(stderr,
+                "mcrt: cannot write '%s': unknown image format '.%s' (use .png, .exr or .pfm)\n",
+                path, suffix);
+    else
+        fprintf(stderr, "mcrt: cannot write '%s': no image suffix (use .png, .exr or .pfm)\n",
+                path);
+    return 0;
+}
+
+/* Whether a file can be created at path: its folder exists and is writable. */
+static int check_folder(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    size_t len = slash ? (size_t)(slash - path) + 1 : 0; /* keep the slash: "/x" is in "/" */
+    char *dir = malloc(len + 2);
+    int ok;
+    if (!dir)
+        return 1; /* the write itself will report it */
+    memcpy(dir, len ? path : ".", len ? len : 1);
+    dir[len ? len : 1] = '\0';
+    ok = access(dir, W_OK | X_OK) == 0;
+    if (!ok)
+        fprintf(stderr, "mcrt: cannot write '%s': %s\n", path, strerror(errno));
+    free(dir);
+    return ok;
+}
+
+/* SCENE's file name with its suffix replaced, in the current folder: scenes/box.mcrt -> box.png. */
+static char *default_output(const char *scene)
+{
+    const char *ext = mcrt_format_supported("png") ? "png" : "pfm";
+    const char *base = strrchr(scene, '/'), *dot;
+    size_t len;
+    char *out;
+    base = base ? base + 1 : scene;
+    dot = strrchr(base, '.');
+    len = dot && dot != base ? (size_t)(dot - base) : strlen(base);
+    out = malloc(len + 5);
+    if (out)
+        sprintf(out, "%.*s.%s", (int)len, base, ext);
+    return out;
+}
+
+static int same_file(const char *a, const char *b)
+{
+    struct stat sa, sb;
+    return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev &&
+           sa.st_ino == sb.st_ino;
+}
+
+/* ---- progress bar ---- */
+
+struct progress {
+    double start, last_draw;
+    int width; /* characters last drawn, to erase them */
+};
+
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static void format_time(char *buf, size_t size, double seconds)
+{
+    long s = (long)(seconds + 0.5);
+    if (s >= 3600)
+        snprintf(buf, size, "%ld:%02ld:%02ld", s / 3600, s / 60 % 60, s % 60);
+    else
+        snprintf(buf, size, "%ld:%02ld", s / 60, s % 60);
+}
+
+/* The render's progress callback: called after each tile from worker threads, one call at a
+ * time, so the state needs no lock. Redraws at most 10 times a second, plus once at the end. */
+static int on_progress(void *user, double done)
+{
+    static const char bar[] = "##############################";
+    struct progress *p = user;
+    double t = now(), elapsed = t - p->start;
+    char took[32], left[32];
+    int filled = (int)(done * (sizeof bar - 1));
+    if (done < 1.0 && t - p->last_draw < 0.1)
+        return 0;
+    p->last_draw = t;
+    format_time(took, sizeof took, elapsed);
+    if (done > 0.0)
+        format_time(left, sizeof left, elapsed * (1.0 - done) / done);
+    else
+        snprintf(left, sizeof left, "?");
+    p->width = fprintf(stderr, "\r[%-*.*s] %3d%%  %s elapsed, %s left ", (int)(sizeof bar - 1),
+                       filled, bar, (int)(done * 100.0), took, left) - 1;
+    fflush(stderr);
+    return 0;
+}
+
+static void progress_clear(struct progress *p)
+{
+    if (p->width > 0)
+        fprintf(stderr, "\r%*s\r", p->width, "");
+}
+
+/* ---- statistics ---- */
+
+static void json_string(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (; *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\')
+            fprintf(f, "\\%c", c);
+        else if (c < 0x20)
+            fprintf(f, "\\u%04x", c);
+        else
+            fputc(c, f);
+    }
+    fputc('"', f);
+}
+
+/* Write the statistics to a temporary file renamed over path when complete, so that a failure
+ * leaves no partial file. Prints why and returns 0 on failure. */
+static int write_stats(const char *path, const char *scene, const char *image, uint64_t seed,
+                       const mcrt_stats *st)
+{
+    size_t len = strlen(path) + 32;
+    char *tmp = malloc(len);
+    FILE *f;
+    int ok;
+    if (!tmp) {
+        fprintf(stderr, "mcrt: cannot write '%s': out of memory\n", path);
+        return 0;
+    }
+    snprintf(tmp, len, "%s.tmp-%ld", path, (long)getpid());
+    f = fopen(tmp, "w");
+    ok = f != NULL;
+    if (ok) {
+        fprintf(f, "{\n  \"scene\": ");
+        json_string(f, scene);
+        fprintf(f, ",\n  \"image\": ");
+        json_string(f, image);
+        fprintf(f,
+                ",\n  \"width\": %d,\n  \"height\": %d,\n  \"spp\": %d,\n  \"threads\": %d,\n"
+                "  \"seed\": %" PRIu64 ",\n  \"seconds\": %.6f,\n  \"rays\": %" PRIu64 ",\n"
+                "  \"mrays_per_second\": %.6g,\n  \"nan_count\": %" PRIu64 "\n}\n",
+                st->width, st->height, st->spp, st->threads, seed, st->seconds, st->rays,
+                st->seconds > 0.0 ? (double)st->rays / st->seconds * 1e-6 : 0.0, st->nan_count);
+        ok = !ferror(f);
+        ok = fclose(f) == 0 && ok;
+    }
+    ok = ok && rename(tmp, path) == 0;
+    if (!ok) {
+        fprintf(stderr, "mcrt: cannot write '%s': %s\n", path, strerror(errno));
+        remove(tmp);
+    }
+    free(tmp);
+    return ok;
+}
+
+/* ---- the render command ---- */
+
+enum { OPT_OUTPUT, OPT_SPP, OPT_THREADS, OPT_SEED, OPT_INTEGRATOR, OPT_STATS, OPT_QUIET, OPT_HELP,
+       OPT_VERSION, OPT_END };
+static const struct arg_spec render_options[OPT_END + 1] = {
+    [OPT_OUTPUT] = {NULL, 'o', 1},        [OPT_SPP] = {"spp", 0, 1},
+    [OPT_THREADS] = {"threads", 0, 1},    [OPT_SEED] = {"seed", 0, 1},
+    [OPT_INTEGRATOR] = {"integrator", 0, 1}, [OPT_STATS] = {"stats", 0, 1},
+    [OPT_QUIET] = {"quiet", 0, 0},        [OPT_HELP] = {"help", 0, 0},
+    [OPT_VERSION] = {"version", 0, 0},    [OPT_END] = {NULL, 0, 0}};
+
+struct render_args {
+    const char *scene, *output, *stats, *integrator;
+    int spp, threads, quiet;
+    uint64_t seed;
+};
+
+/* Parse the command line into a; returns -1 to go on, or the exit status to stop with. */
+static int parse_render_args(int argc, char **argv, struct render_args *a)
+{
+    struct arg_parser p;
+    const char *v;
+    int opt;
+    memset(a, 0, sizeof *a);
+    mc_args_init(&p, argc, argv);
+    while ((opt = mc_args_next(&p, render_options, &v)) != ARG_END) {
+        switch (opt) {
+        case ARG_ERROR:
+            return EXIT_USAGE;
+        case ARG_OPERAND:
+            if (a->scene) {
+                fprintf(stderr, "mcrt: more than one scene given ('%s' and '%s')\n", a->scene, v);
+                return EXIT_USAGE;
+            }
+            a->scene = v;
+            break;
+        case OPT_OUTPUT:
+            a->output = v;
+            break;
+        case OPT_SPP:
+            if (!mc_args_int("spp", v, 1, 2147483647, &a->spp))
+                return EXIT_USAGE;
+            break;
+        case OPT_THREADS:
+            if (!mc_args_int("threads", v, 0, 2147483647, &a->threads))
+                return EXIT_USAGE;
+            break;
+        case OPT_SEED:
+            if (!mc_args_u64("seed", v, &a->seed))
+                return EXIT_USAGE;
+            break;
+        case OPT_INTEGRATOR:
+            if (strcmp(v, "path") != 0 && strcmp(v, "direct") != 0) {
+                fprintf(stderr, "mcrt: --integrator: expected 'path' or 'direct', got '%s'\n", v);
+                return EXIT_USAGE;
+            }
+            a->integrator = v;
+            break;
+        case OPT_STATS:
+            a->stats = v;
+            break;
+        case OPT_QUIET:
+            a->quiet = 1;
+            break;
+        case OPT_HELP:
+            fputs(usage, stdout);
+            return fflush(stdout) == 0 ? EXIT_OK : EXIT_FAIL;
+        case OPT_VERSION:
+            return print_version();
+        }
+    }
+    if (!a->scene) {
+        fprintf(stderr, "mcrt: no scene file given (see mcrt --help)\n");
+        return EXIT_USAGE;
+    }
+    return -1;
+}
+
+/* Load, render and write; the output paths have been checked. */
+static int render(const struct render_args *a, const char *output)
+{
+    mcrt_scene *scene = mcrt_scene_new();
+    mcrt_render *r = NULL;
+    mcrt_options o;
+    mcrt_stats st;
+    struct progress prog;
+    mcrt_status status;
+    int code = EXIT_FAIL;
+
+    if (!scene) {
+        fprintf(stderr, "mcrt: out of memory\n");
+        return EXIT_FAIL;
+    }
+    status = mcrt_scene_load_file(scene, a->scene);
+    if (status != MCRT_OK) {
+        fprintf(stderr, "%s\n", mcrt_scene_error(scene)); /* already "file:line:col: ..." */
+        mcrt_scene_free(scene);
+        return status == MCRT_ERR_NOMEM ? EXIT_FAIL : EXIT_USAGE;
+    }
+    mcrt_options_init(&o);
+    o.spp = a->spp;
+    o.threads = a->threads;
+    o.seed = a->seed;
+    o.integrator = a->integrator;
+    if (!a->quiet && isatty(STDERR_FILENO)) {
+        prog.start = now();
+        prog.last_draw = 0.0;
+        prog.width = 0;
+        o.progress = on_progress;
+        o.user = &prog;
+    }
+    r = mcrt_render_new(scene, &o);
+    if (!r) {
+        fprintf(stderr, "mcrt: out of memory\n");
+        goto done;
+    }
+    status = mcrt_render_run(r);
+    if (o.progress)
+        progress_clear(&prog);
+    if (status != MCRT_OK) {
+        fprintf(stderr, "mcrt: %s\n", mcrt_render_error(r));
+        /* MCRT_ERR_INVALID: options the library refused (e.g. more spp than it allows). */
+        code = status == MCRT_ERR_INVALID ? EXIT_USAGE : EXIT_FAIL;
+        goto done;
+    }
+    if (mcrt_render_save(r, output) != MCRT_OK) {
+        fprintf(stderr, "mcrt: %s\n", mcrt_render_error(r));
+        goto done;
+    }
+    mcrt_render_stats(r, &st);
+    if (a->stats && !write_stats(a->stats, a->scene, output, a->seed, &st))
+        goto done;
+    if (!a->quiet)
+        fprintf(stderr,
+                "%s: %dx%d, %d spp, %d thread%s, %.*f s, %.2f Mrays/s, %" PRIu64 " NaN samples\n",
+                output, st.width, st.height, st.spp, st.threads, st.threads == 1 ? "" : "s",
+                st.seconds < 10.0 ? 2 : 1, st.seconds,
+                st.seconds > 0.0 ? (double)st.rays / st.seconds * 1e-6 : 0.0, st.nan_count);
+    code = EXIT_OK;
+done:
+    mcrt_render_free(r);
+    mcrt_scene_free(scene);
+    return code;
+}
+
+static int cmd_render(int argc, char **argv)
+{
+    struct render_args a;
+    char *owned = NULL;
+    const char *output;
+    int code = parse_render_args(argc, argv, &a);
+    if (code >= 0)
+        return code;
+    output = a.output ? a.output : (owned = default_output(a.scene));
+    if (!output) {
+        fprintf(stderr, "mcrt: out of memory\n");
+        return EXIT_FAIL;
+    }
+    /* Everything that can be known to fail is checked before the render, not after it. */
+    if (!check_output(output) || !check_folder(output) || (a.stats && !check_folder(a.stats)))
+        code = EXIT_USAGE;
+    else if (same_file(a.scene, output) || (a.stats && same_file(a.scene, a.stats))) {
+        fprintf(stderr, "mcrt: refusing to overwrite the scene file '%s'\n", a.scene);
+        code = EXIT_USAGE;
+    } else
+        code = render(&a, output);
+    free(owned);
+    return code;
+}
+
+/* ---- commands ---- */
+
+/* Commands by name (`mcrt NAME ...`); without one, mcrt renders. Each gets argv from its name. */
+static const struct command {
+    const char *name;
+    int (*run)(int argc, char **argv);
+} commands[] = {{"render", cmd_render}};
+
+int main(int argc, char **argv)
+{
+    size_t i;
+    for (i = 0; argc > 1 && i < sizeof commands / sizeof commands[0]; i++)
+        if (strcmp(argv[1], commands[i].name) == 0)
+            return commands[i].run(argc - 1, argv + 1);
+    return cmd_render(argc, argv);
+}

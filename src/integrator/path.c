@@ -1,0 +1,154 @@
+/* path.c: the path tracer (see integrator.h), after pbrt-v4's PathIntegrator::Li. */
+#include "integrator/integrator.h"
+
+#include <limits.h>
+
+#include "bsdf/bsdf.h"
+
+struct integrator_desc mc_integrator_config(const struct integrator_desc *scene_desc,
+                                            enum integrator_kind method)
+{
+    struct integrator_desc c = *scene_desc;
+    c.method = method;
+    if (method == INTEGRATOR_DIRECT) {
+        c.max_depth = 1;
+        c.rr_depth = INT_MAX;
+    }
+    return c;
+}
+
+/* Veach's power heuristic with β = 2 for the strategy with pdf a against one with pdf b. */
+static float power_heuristic(float a, float b)
+{
+    float a2 = a * a, b2 = b * b;
+    if (isinf(a2))
+        return 1.0f;
+    return a2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
+}
+
+/* The side of the surface a direction leaves from, for offsetting ray origins. */
+static vec3 side_normal(vec3 ng, vec3 w) { return v3_dot(w, ng) >= 0.0f ? ng : v3_neg(ng); }
+
+/* Next-event estimation at a non-delta surface: one light chosen by power, one point on it,
+ * weighted against BSDF sampling. Returns the contribution before the path throughput. */
+static vec3 sample_direct(const struct scene *s, const struct surface *sf, const frame *fr,
+                          const struct bsdf *b, vec3 wo, struct sampler *smp, uint64_t *rays)
+{
+    struct light_sample ls;
+    struct ray shadow;
+    float pmf, light_pdf, weight;
+    vec3 wi, f, target;
+    int li = mc_light_table_pick(&s->light_table, mc_sampler_1d(smp), &pmf);
+    vec2 u = mc_sampler_2d(smp);
+    if (li < 0 || !mc_light_sample(s, &s->lights[li], sf->p, u, &ls) || v3_is_zero(ls.L))
+        return v3s(0.0f);
+    wi = frame_to_local(fr, ls.wi);
+    f = v3_scale(mc_bsdf_eval(b, wo, wi), fabsf(wi.z));
+    if (v3_is_zero(f))
+        return v3s(0.0f);
+    shadow.o = ray_offset(sf->p, side_normal(sf->ng, ls.wi));
+    if (isinf(ls.dist)) {
+        shadow.d = ls.wi;
+        shadow.tmax = INFINITY;
+    } else {
+        /* Aim at the light point moved off its own surface, so that the light itself never
+         * occludes the segment. */
+        target = v3_is_zero(ls.normal) ? ls.point : ray_offset(ls.point, ls.normal);
+        shadow.d = v3_sub(target, shadow.o);
+        shadow.tmax = v3_length(shadow.d);
+        if (!(shadow.tmax > 0.0f))
+            return v3s(0.0f);
+        shadow.d = v3_scale(shadow.d, 1.0f / shadow.tmax);
+    }
+    ++*rays;
+    if (mc_bvh_occluded(&s->bvh, s->prims, &shadow))
+        return v3s(0.0f);
+    light_pdf = pmf * ls.pdf;
+    weight = ls.delta ? 1.0f : power_heuristic(light_pdf, mc_bsdf_pdf(b, wo, wi));
+    return v3_scale(v3_mul(f, ls.L), weight / light_pdf);
+}
+
+/* MIS weight of light found by BSDF sampling (pdf bsdf_pdf at the previous vertex prev_p),
+ * against the light-sampling strategy that could also have produced it. */
+static float emitted_weight(const struct scene *s, int light, vec3 prev_p, float bsdf_pdf,
+                            vec3 dir, float t, const struct surface *sf)
+{
+    float light_pdf = mc_light_table_pmf(&s->light_table, (size_t)light)
+                      * mc_light_pdf(s, &s->lights[light], prev_p, dir, t, sf);
+    return power_heuristic(bsdf_pdf, light_pdf);
+}
+
+vec3 mc_path_radiance(const struct scene *s, const struct integrator_desc *cfg, struct ray r,
+                      struct sampler *smp, uint64_t *rays)
+{
+    vec3 L = v3s(0.0f), beta = v3s(1.0f), prev_p = r.o;
+    float eta_scale = 1.0f, prev_pdf = 0.0f;
+    int depth = 0, specular = 1; /* the camera ray counts as specular: its emission is not MIS'd */
+    for (;;) {
+        struct hit h;
+        struct surface sf;
+        struct bsdf b;
+        struct bsdf_sample bs;
+        const struct prim *pr;
+        frame fr;
+        vec3 Le, wo, wi;
+        h.t = r.tmax;
+        ++*rays;
+        if (!mc_bvh_intersect(&s->bvh, s->prims, &r, &h)) {
+            if (s->env_light >= 0) {
+                float w = specular ? 1.0f
+                                   : emitted_weight(s, s->env_light, prev_p, prev_pdf, r.d,
+                                                    INFINITY, NULL);
+                L = v3_add(L, v3_scale(v3_mul(beta, s->lights[s->env_light].intensity), w));
+            }
+            break;
+        }
+        pr = &s->prims[h.prim];
+        mc_prim_surface(pr, s->normals, &r, &h, &sf);
+        Le = mc_light_emitted(pr, &sf);
+        if (!v3_is_zero(Le)) {
+            float w = specular ? 1.0f : emitted_weight(s, pr->light, prev_p, prev_pdf, r.d, h.t, &sf);
+            L = v3_add(L, v3_scale(v3_mul(beta, Le), w));
+        }
+        if (depth == cfg->max_depth)
+            break;
+
+        mc_bsdf_init(&b, &s->materials[pr->material]);
+        fr = frame_from_normal(sf.ns);
+        wo = frame_to_local(&fr, v3_neg(r.d));
+        if (!mc_bsdf_is_delta(&b))
+            L = v3_add(L, v3_mul(beta, sample_direct(s, &sf, &fr, &b, wo, smp, rays)));
+
+        {
+            float uc = mc_sampler_1d(smp);
+            vec2 u = mc_sampler_2d(smp);
+            if (!mc_bsdf_sample(&b, wo, uc, u, &bs))
+                break;
+        }
+        beta = v3_mul(beta, bs.weight);
+        if (v3_is_zero(beta))
+            break;
+        if (bs.eta != 1.0f)
+            eta_scale *= bs.eta * bs.eta; /* undo the 1/η² radiance scaling for roulette */
+        wi = frame_to_world(&fr, bs.wi);
+        specular = bs.delta;
+        prev_pdf = bs.pdf;
+        prev_p = sf.p;
+        r.o = ray_offset(sf.p, side_normal(sf.ng, wi));
+        r.d = wi;
+        r.tmax = INFINITY;
+        depth++;
+
+        /* Russian roulette: survive with probability q = max(β·η-scale), clamped to 1, and divide
+         * by q, which keeps the estimator unbiased (Arvo and Kirk 1990). */
+        if (depth >= cfg->rr_depth) {
+            float q = v3_max_comp(beta) * eta_scale;
+            if (q < 1.0f) {
+                if (!(mc_sampler_1d(smp) < q))
+                    break;
+                beta = v3_scale(beta, 1.0f / q);
+            }
+        }
+    }
+    return L;
+}

@@ -1,0 +1,347 @@
+/* exr.c: OpenEXR through its C library, OpenEXRCore: writes scanline float R, G, B; reads the R, G,
+ * B (or the first LAYER.R/G/B) half or float channels of a scanline file's first part. */
+#include "io/formats.h"
+
+#ifdef MCRT_HAVE_EXR
+
+#include <errno.h>
+#include <openexr.h>
+#include <pthread.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+/* One read or write: the file and the first message the library reported. */
+struct exr_job {
+    int fd;
+    char msg[256];
+};
+
+/* The job of the EXR call running on this thread, for the error handler. The handler cannot get
+ * it from the context (exr_get_user_data): for a context being set up for writing that call locks
+ * the context's mutex, which the library may still hold when it reports an error, and the mutex
+ * is not recursive (with OpenEXR 3.1.5 an error in exr_add_channel then deadlocks). */
+static pthread_key_t job_key;
+static pthread_once_t job_once = PTHREAD_ONCE_INIT;
+static int job_key_ok;
+
+static void make_job_key(void)
+{
+    job_key_ok = pthread_key_create(&job_key, NULL) == 0;
+}
+
+static void begin(struct exr_job *job, int fd)
+{
+    job->fd = fd;
+    job->msg[0] = '\0';
+    pthread_once(&job_once, make_job_key);
+    if (job_key_ok)
+        pthread_setspecific(job_key, job);
+}
+
+static void end(void)
+{
+    if (job_key_ok)
+        pthread_setspecific(job_key, NULL);
+}
+
+/* Keep the first message: the later ones describe consequences ("unable to write chunk"). The
+ * library's default handler would print to stderr; this library never prints. */
+static void on_error(exr_const_context_t ctxt, exr_result_t code, const char *msg)
+{
+    struct exr_job *job = job_key_ok ? pthread_getspecific(job_key) : NULL;
+    (void)ctxt;
+    (void)code;
+    if (job && !job->msg[0])
+        snprintf(job->msg, sizeof job->msg, "%s", msg);
+}
+
+/* The job's message, or the library's text for the code when it reported none. */
+static mcrt_status fail(const struct exr_job *job, exr_result_t rv, mc_diag *d)
+{
+    return mc_fail(d, rv == EXR_ERR_OUT_OF_MEMORY ? MCRT_ERR_NOMEM : MCRT_ERR_IO, "%s",
+                   job->msg[0] ? job->msg : exr_get_default_error_message(rv));
+}
+
+/* Stream callbacks on the descriptor of the FILE image.c opened (nothing goes through the FILE's
+ * buffer). OpenEXR wants pread/pwrite semantics: it seeks back to write the chunk offset table. */
+static int64_t read_fd(exr_const_context_t ctxt, void *user, void *buf, uint64_t size,
+                       uint64_t offset, exr_stream_error_func_ptr_t error_cb)
+{
+    struct exr_job *job = user;
+    uint64_t done = 0;
+    (void)ctxt;
+    (void)error_cb;
+    while (done < size) {
+        ssize_t n =
+            pread(job->fd, (char *)buf + done, (size_t)(size - done), (off_t)(offset + done));
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n < 0)
+            return -1;
+        if (n == 0)
+            break; /* end of file: a short read, which the library reports as truncation */
+        done += (uint64_t)n;
+    }
+    return (int64_t)done;
+}
+
+static int64_t size_fd(exr_const_context_t ctxt, void *user)
+{
+    struct exr_job *job = user;
+    struct stat st;
+    (void)ctxt;
+    return fstat(job->fd, &st) == 0 ? (int64_t)st.st_size : -1;
+}
+
+static int64_t write_fd(exr_const_context_t ctxt, void *user, const void *buf, uint64_t size,
+                        uint64_t offset, exr_stream_error_func_ptr_t error_cb)
+{
+    struct exr_job *job = user;
+    uint64_t done = 0;
+    (void)ctxt;
+    (void)error_cb;
+    while (done < size) {
+        ssize_t n = pwrite(job->fd, (const char *)buf + done, (size_t)(size - done),
+                           (off_t)(offset + done));
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n <= 0) {
+            if (!job->msg[0]) /* the reason, before the library's "unable to write" */
+                snprintf(job->msg, sizeof job->msg, "%s", strerror(n < 0 ? errno : EIO));
+            return -1;
+        }
+        done += (uint64_t)n;
+    }
+    return (int64_t)done;
+}
+
+static exr_context_initializer_t initializer(struct exr_job *job)
+{
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    init.error_handler_fn = on_error;
+    init.user_data = job;
+    init.read_fn = read_fd;
+    init.size_fn = size_fd;
+    init.write_fn = write_fd;
+    return init;
+}
+
+/* Encode rgb chunk by chunk (16 scanlines per ZIP chunk). The library's pack step gathers each
+ * channel from our interleaved rows through the pixel and line strides. */
+static exr_result_t encode_pixels(exr_context_t ctx, const float *rgb, int w, int h)
+{
+    exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
+    exr_chunk_info_t cinfo;
+    exr_result_t rv;
+    int32_t lines;
+    int y, c, started = 0;
+
+    rv = exr_get_scanlines_per_chunk(ctx, 0, &lines);
+    for (y = 0; rv == EXR_ERR_SUCCESS && y < h; y += lines) {
+        rv = exr_write_scanline_chunk_info(ctx, 0, y, &cinfo);
+        if (rv == EXR_ERR_SUCCESS)
+            rv = started ? exr_encoding_update(ctx, 0, &cinfo, &enc)
+                         : exr_encoding_initialize(ctx, 0, &cinfo, &enc);
+        if (rv != EXR_ERR_SUCCESS)
+            break;
+        for (c = 0; c < enc.channel_count; c++) {
+            exr_coding_channel_info_t *ch = &enc.channels[c];
+            /* The file lists channels alphabetically (B, G, R); our pixels are R, G, B. */
+            int k = ch->channel_name[0] == 'R' ? 0 : ch->channel_name[0] == 'G' ? 1 : 2;
+            ch->encode_from_ptr =
+                (const uint8_t *)(rgb + (size_t)cinfo.start_y * (size_t)w * 3 + (size_t)k);
+            ch->user_pixel_stride = 3 * (int32_t)sizeof(float);
+            ch->user_line_stride = 3 * (int32_t)sizeof(float) * w;
+            ch->user_bytes_per_element = (int16_t)sizeof(float);
+            ch->user_data_type = EXR_PIXEL_FLOAT;
+        }
+        if (!started)
+            rv = exr_encoding_choose_default_routines(ctx, 0, &enc);
+        started = 1;
+        if (rv == EXR_ERR_SUCCESS)
+            rv = exr_encoding_run(ctx, 0, &enc);
+    }
+    if (started)
+        exr_encoding_destroy(ctx, &enc);
+    return rv;
+}
+
+static mcrt_status exr_write(FILE *f, const float *rgb, int w, int h, mc_diag *d)
+{
+    static const char *const names[3] = {"R", "G", "B"};
+    struct exr_job job;
+    exr_context_initializer_t init;
+    exr_context_t ctx = NULL;
+    exr_result_t rv, rv_finish;
+    int part, c;
+
+    if (w > INT32_MAX / (3 * (long)sizeof(float))) /* the library's line stride is an int32_t */
+        return mc_fail(d, MCRT_ERR_INVALID, "%d pixels is too wide for one EXR scanline", w);
+    begin(&job, fileno(f));
+    init = initializer(&job);
+    rv = exr_start_write(&ctx, "image", EXR_WRITE_FILE_DIRECTLY, &init);
+    if (rv == EXR_ERR_SUCCESS)
+        rv = exr_add_part(ctx, NULL, EXR_STORAGE_SCANLINE, &part);
+    /* ZIP (deflate on 16-line chunks) is lossless and every EXR reader decodes it. The trade-off,
+     * measured here on a 1024x1024 image: with +-30% noise in every pixel it saves only 3% and
+     * takes 0.33 s against 0.02 s for NONE (float noise fills the low mantissa bits); a noise-free
+     * gradient shrinks 60x. Once per render, the time is small next to rendering. */
+    if (rv == EXR_ERR_SUCCESS)
+        rv = exr_initialize_required_attr_simple(ctx, part, w, h, EXR_COMPRESSION_ZIP);
+    for (c = 0; c < 3 && rv == EXR_ERR_SUCCESS; c++)
+        rv = exr_add_channel(ctx, part, names[c], EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LOGARITHMIC, 1,
+                             1);
+    if (rv == EXR_ERR_SUCCESS)
+        rv = exr_write_header(ctx);
+    if (rv == EXR_ERR_SUCCESS)
+        rv = encode_pixels(ctx, rgb, w, h);
+    /* exr_finish writes the chunk offset table, so its result matters too. */
+    rv_finish = exr_finish(&ctx);
+    if (rv == EXR_ERR_SUCCESS)
+        rv = rv_finish;
+    end();
+    return rv == EXR_ERR_SUCCESS ? MCRT_OK : fail(&job, rv, d);
+}
+
+/* Pick the channels to read as R, G, B: "R", "G", "B" if present, else the alphabetically first
+ * layer with all three ("diffuse.R", "diffuse.G", "diffuse.B"). idx gets chlist indices. */
+static int pick_channels(const exr_attr_chlist_t *chl, int idx[3])
+{
+    static const char rgb[3] = {'R', 'G', 'B'};
+    int i, j, k;
+    for (i = -1; i < chl->num_channels; i++) {
+        /* i = -1 tries the unprefixed names; otherwise entry i ending in ".R" names a layer. */
+        const char *name = i < 0 ? "R" : chl->entries[i].name.str;
+        size_t plen = i < 0 ? 0 : (size_t)chl->entries[i].name.length - 1;
+        if (i >= 0 && (plen < 2 || name[plen - 1] != '.' || name[plen] != 'R'))
+            continue;
+        for (k = 0; k < 3; k++) {
+            idx[k] = -1;
+            for (j = 0; j < chl->num_channels; j++) {
+                const exr_attr_string_t *s = &chl->entries[j].name;
+                if ((size_t)s->length == plen + 1 && strncmp(s->str, name, plen) == 0 &&
+                    s->str[plen] == rgb[k])
+                    idx[k] = j;
+            }
+            if (idx[k] < 0)
+                break;
+        }
+        if (k == 3)
+            return 1;
+    }
+    return 0;
+}
+
+/* Decode the chosen channels of part 0 into im, converting half to float on the way. */
+static exr_result_t decode_pixels(exr_context_t ctx, const exr_attr_box2i_t *dw, const int idx[3],
+                                  struct image *im, int *corrupt)
+{
+    exr_decode_pipeline_t dec = EXR_DECODE_PIPELINE_INITIALIZER;
+    exr_chunk_info_t cinfo;
+    exr_result_t rv;
+    int32_t lines;
+    int y, k, started = 0;
+    size_t w = (size_t)im->width;
+
+    rv = exr_get_scanlines_per_chunk(ctx, 0, &lines);
+    for (y = dw->min.y; rv == EXR_ERR_SUCCESS && y <= dw->max.y; y += lines) {
+        rv = exr_read_scanline_chunk_info(ctx, 0, y, &cinfo);
+        if (rv == EXR_ERR_SUCCESS)
+            rv = started ? exr_decoding_update(ctx, 0, &cinfo, &dec)
+                         : exr_decoding_initialize(ctx, 0, &cinfo, &dec);
+        if (rv != EXR_ERR_SUCCESS)
+            break;
+        /* The chunk must lie inside the data window, or our strides would write out of bounds. */
+        if (cinfo.start_y < dw->min.y || cinfo.height < 1 ||
+            (int64_t)cinfo.start_y + cinfo.height - 1 > dw->max.y || (size_t)cinfo.width != w) {
+            *corrupt = 1;
+            break;
+        }
+        /* Channels we do not want keep a NULL pointer, which the decoder skips. */
+        for (k = 0; k < 3; k++) {
+            exr_coding_channel_info_t *ch = &dec.channels[idx[k]];
+            ch->decode_to_ptr =
+                (uint8_t *)(im->rgb + (size_t)(cinfo.start_y - dw->min.y) * w * 3 + (size_t)k);
+            ch->user_pixel_stride = 3 * (int32_t)sizeof(float);
+            ch->user_line_stride = 3 * (int32_t)(sizeof(float) * w);
+            ch->user_bytes_per_element = (int16_t)sizeof(float);
+            ch->user_data_type = EXR_PIXEL_FLOAT;
+        }
+        if (!started)
+            rv = exr_decoding_choose_default_routines(ctx, 0, &dec);
+        started = 1;
+        if (rv == EXR_ERR_SUCCESS)
+            rv = exr_decoding_run(ctx, 0, &dec);
+    }
+    if (started)
+        exr_decoding_destroy(ctx, &dec);
+    return rv;
+}
+
+/* Check part 0 and read it; anything we refuse is explained in d with status MCRT_ERR_IO. */
+static mcrt_status read_part(exr_context_t ctx, struct exr_job *job, struct image *im, mc_diag *d)
+{
+    exr_storage_t storage;
+    exr_attr_box2i_t dw;
+    const exr_attr_chlist_t *chl;
+    exr_result_t rv;
+    int idx[3], k, corrupt = 0;
+    mcrt_status st;
+
+    if ((rv = exr_get_storage(ctx, 0, &storage)) != EXR_ERR_SUCCESS ||
+        (rv = exr_get_data_window(ctx, 0, &dw)) != EXR_ERR_SUCCESS ||
+        (rv = exr_get_channels(ctx, 0, &chl)) != EXR_ERR_SUCCESS)
+        return fail(job, rv, d);
+    if (storage != EXR_STORAGE_SCANLINE)
+        return mc_fail(d, MCRT_ERR_IO, "%s EXR images are not supported (only scanline ones)",
+                       storage == EXR_STORAGE_TILED ? "tiled" : "deep");
+    if (!pick_channels(chl, idx))
+        return mc_fail(d, MCRT_ERR_IO,
+                       "no R, G, B channels (nor LAYER.R, .G, .B) in the first part");
+    for (k = 0; k < 3; k++) {
+        const exr_attr_chlist_entry_t *e = &chl->entries[idx[k]];
+        if ((e->pixel_type != EXR_PIXEL_HALF && e->pixel_type != EXR_PIXEL_FLOAT) ||
+            e->x_sampling != 1 || e->y_sampling != 1)
+            return mc_fail(d, MCRT_ERR_IO, "channel '%s' is not full-resolution half or float",
+                           e->name.str);
+    }
+    /* The data window is the pixel rectangle stored; it becomes our image whatever its origin. */
+    if ((long)dw.max.x - dw.min.x + 1 > INT32_MAX / (3 * (long)sizeof(float)))
+        return mc_fail(d, MCRT_ERR_IO, "the image is too wide");
+    st = mc_image_alloc(im, (long)dw.max.x - dw.min.x + 1, (long)dw.max.y - dw.min.y + 1, d);
+    if (st != MCRT_OK)
+        return st;
+    rv = decode_pixels(ctx, &dw, idx, im, &corrupt);
+    if (rv == EXR_ERR_SUCCESS && !corrupt)
+        return MCRT_OK;
+    mc_image_free(im);
+    return corrupt ? mc_fail(d, MCRT_ERR_IO, "corrupt scanline chunk") : fail(job, rv, d);
+}
+
+static mcrt_status exr_read(FILE *f, struct image *im, mc_diag *d)
+{
+    struct exr_job job;
+    exr_context_initializer_t init;
+    exr_context_t ctx = NULL;
+    exr_result_t rv;
+    mcrt_status st;
+
+    begin(&job, fileno(f));
+    init = initializer(&job);
+    /* Without reconstruction a damaged chunk table is an error, not a guess. */
+    init.flags = EXR_CONTEXT_FLAG_DISABLE_CHUNK_RECONSTRUCTION;
+    rv = exr_start_read(&ctx, "image", &init);
+    st = rv == EXR_ERR_SUCCESS ? read_part(ctx, &job, im, d) : fail(&job, rv, d);
+    exr_finish(&ctx);
+    end();
+    return st;
+}
+
+const struct image_format mc_exr_format = {"exr", "OpenEXR", "libopenexr-dev", exr_write, exr_read};
+
+#else
+
+const struct image_format mc_exr_format = {"exr", "OpenEXR", "libopenexr-dev", NULL, NULL};
+
+#endif

@@ -1,0 +1,193 @@
+/* image.c: image files by suffix: the format table, and crash-safe writing (a temporary file in
+ * the same folder, renamed over the target only when complete: rename(2) is atomic). */
+#include "io/formats.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <unistd.h>
+
+static const struct image_format *const formats[] = {&mc_png_format, &mc_exr_format,
+                                                      &mc_pfm_format};
+#define NFORMATS (sizeof formats / sizeof formats[0])
+
+static const struct image_format *find_format(const char *suffix)
+{
+    size_t i;
+    if (suffix[0] == '.')
+        suffix++;
+    for (i = 0; i < NFORMATS; i++)
+        if (strcasecmp(suffix, formats[i]->suffix) == 0)
+            return formats[i];
+    return NULL;
+}
+
+/* The suffix of the last path component including the dot ("" if none). */
+static const char *path_suffix(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    const char *dot = strrchr(slash ? slash + 1 : path, '.');
+    return dot ? dot : "";
+}
+
+/* Find path's format or explain (verb is "write" or "read") why there is none in this build. */
+static mcrt_status lookup(const char *path, const char *verb, const struct image_format **out,
+                          mc_diag *d)
+{
+    const char *suffix = path_suffix(path);
+    const struct image_format *fmt = find_format(suffix);
+    if (!fmt) {
+        if (!suffix[0])
+            return mc_fail(d, MCRT_ERR_UNSUPPORTED,
+                           "cannot %s '%s': no image suffix (use .png, .exr or .pfm)", verb, path);
+        return mc_fail(d, MCRT_ERR_UNSUPPORTED,
+                       "cannot %s '%s': unknown image format '%s' (use .png, .exr or .pfm)", verb,
+                       path, suffix);
+    }
+    if (!fmt->write || !fmt->read)
+        return mc_fail(d, MCRT_ERR_UNSUPPORTED,
+                       "cannot %s '%s': this mcrt was built without %s (install %s and rebuild)",
+                       verb, path, fmt->library, fmt->package);
+    *out = fmt;
+    return MCRT_OK;
+}
+
+/* Turn the bare reason a format left in d into "cannot VERB 'path': reason". */
+static mcrt_status explain(mc_diag *d, mcrt_status status, const char *verb, const char *path)
+{
+    char reason[sizeof d->msg];
+    if (!d)
+        return status;
+    memcpy(reason, d->msg, sizeof reason);
+    return mc_fail(d, status, "cannot %s '%s': %s", verb, path, reason);
+}
+
+int mc_image_supported(const char *suffix)
+{
+    const struct image_format *fmt = suffix ? find_format(suffix) : NULL;
+    return fmt && fmt->write && fmt->read;
+}
+
+mcrt_status mc_image_check_size(long w, long h, mc_diag *d)
+{
+    if (w <= 0 || h <= 0 || w > MC_IMAGE_MAX_PIXELS / h)
+        return mc_fail(d, MCRT_ERR_IO, "image size %ldx%ld is out of range (at most %ld pixels)",
+                       w, h, (long)MC_IMAGE_MAX_PIXELS);
+    return MCRT_OK;
+}
+
+mcrt_status mc_image_alloc(struct image *im, long w, long h, mc_diag *d)
+{
+    mcrt_status st = mc_image_check_size(w, h, d);
+    if (st != MCRT_OK)
+        return st;
+    im->rgb = malloc((size_t)w * (size_t)h * 3 * sizeof(float));
+    if (!im->rgb)
+        return mc_fail(d, MCRT_ERR_NOMEM, "out of memory for a %ldx%ld image", w, h);
+    im->width = (int)w;
+    im->height = (int)h;
+    return MCRT_OK;
+}
+
+/* Create a new file next to path, named path.tmp-PID-N. O_EXCL with mode 0666 (not mkstemp's
+ * 0600) so that the finished file gets the permissions the umask gives any new file. */
+static FILE *create_temp(const char *path, char **tmp_out)
+{
+    size_t len = strlen(path) + 48;
+    char *tmp = malloc(len);
+    int attempt, fd = -1;
+    FILE *f;
+    if (!tmp)
+        return NULL;
+    for (attempt = 0; attempt < 100 && fd < 0; attempt++) {
+        snprintf(tmp, len, "%s.tmp-%ld-%d", path, (long)getpid(), attempt);
+        fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL, 0666);
+        if (fd < 0 && errno != EEXIST)
+            break;
+    }
+    if (fd < 0) {
+        free(tmp);
+        return NULL;
+    }
+    f = fdopen(fd, "wb");
+    if (!f) {
+        int saved = errno;
+        close(fd);
+        unlink(tmp);
+        free(tmp);
+        errno = saved;
+        return NULL;
+    }
+    *tmp_out = tmp;
+    return f;
+}
+
+mcrt_status mc_image_write(const char *path, const float *rgb, int w, int h, mc_diag *d)
+{
+    const struct image_format *fmt;
+    char *tmp = NULL;
+    FILE *f;
+    mcrt_status st;
+
+    if (!path || !rgb)
+        return mc_fail(d, MCRT_ERR_INVALID, "cannot write an image: no %s",
+                       path ? "pixels" : "path");
+    if ((st = lookup(path, "write", &fmt, d)) != MCRT_OK)
+        return st;
+    if (w <= 0 || h <= 0 || w > MC_IMAGE_MAX_PIXELS / h)
+        return mc_fail(d, MCRT_ERR_INVALID, "cannot write '%s': image size %dx%d is out of range",
+                       path, w, h);
+    f = create_temp(path, &tmp);
+    if (!f)
+        return mc_fail(d, errno == ENOMEM ? MCRT_ERR_NOMEM : MCRT_ERR_IO, "cannot write '%s': %s",
+                       path, strerror(errno));
+
+    st = fmt->write(f, rgb, w, h, d);
+    if (st != MCRT_OK)
+        st = explain(d, st, "write", path);
+    /* fclose flushes, so it is where a full disk shows up. */
+    if (fclose(f) != 0 && st == MCRT_OK)
+        st = mc_fail(d, MCRT_ERR_IO, "cannot write '%s': %s", path, strerror(errno));
+    if (st == MCRT_OK && rename(tmp, path) != 0)
+        st = mc_fail(d, MCRT_ERR_IO, "cannot write '%s': rename from '%s' failed: %s", path, tmp,
+                     strerror(errno));
+    if (st != MCRT_OK)
+        unlink(tmp);
+    free(tmp);
+    return st;
+}
+
+mcrt_status mc_image_read(const char *path, struct image *im, mc_diag *d)
+{
+    const struct image_format *fmt;
+    struct image got = {0, 0, NULL};
+    FILE *f;
+    mcrt_status st;
+
+    if (!path || !im)
+        return mc_fail(d, MCRT_ERR_INVALID, "cannot read an image: no %s", path ? "image" : "path");
+    im->width = im->height = 0;
+    im->rgb = NULL;
+    if ((st = lookup(path, "read", &fmt, d)) != MCRT_OK)
+        return st;
+    f = fopen(path, "rb");
+    if (!f)
+        return mc_fail(d, MCRT_ERR_IO, "cannot read '%s': %s", path, strerror(errno));
+    st = fmt->read(f, &got, d);
+    fclose(f);
+    if (st != MCRT_OK)
+        return explain(d, st, "read", path);
+    *im = got;
+    return MCRT_OK;
+}
+
+void mc_image_free(struct image *im)
+{
+    if (!im)
+        return;
+    free(im->rgb);
+    im->rgb = NULL;
+    im->width = im->height = 0;
+}

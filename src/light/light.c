@@ -1,0 +1,233 @@
+/* light.c: sampling the emitters by solid angle, their pdfs for MIS, and power-proportional
+ * selection. Area lights are sampled by area (quads, triangles) converted to solid angle with
+ * dist²/|cos θl|, spheres by the cone they subtend (pbrt-v4, Sphere::Sample, after Shirley and
+ * Wang 1996), the constant environment uniformly over the sphere. */
+#include "light/light.h"
+
+#include <stdlib.h>
+
+#include "sample/warp.h"
+#include "scene/scene.h"
+
+int mc_light_table_build(struct light_table *t, const struct light *lights, size_t n)
+{
+    double total = 0.0, run = 0.0;
+    size_t i;
+    t->cdf = NULL;
+    t->count = 0;
+    for (i = 0; i < n; i++)
+        total += lights[i].power;
+    if (n == 0 || !(total > 0.0))
+        return 0;
+    t->cdf = malloc(n * sizeof *t->cdf);
+    if (!t->cdf)
+        return -1;
+    for (i = 0; i < n; i++) {
+        run += lights[i].power;
+        t->cdf[i] = (float)(run / total);
+    }
+    t->cdf[n - 1] = 1.0f;
+    t->count = n;
+    return 0;
+}
+
+void mc_light_table_free(struct light_table *t)
+{
+    free(t->cdf);
+    t->cdf = NULL;
+    t->count = 0;
+}
+
+float mc_light_table_pmf(const struct light_table *t, size_t i)
+{
+    if (i >= t->count)
+        return 0.0f;
+    return t->cdf[i] - (i > 0 ? t->cdf[i - 1] : 0.0f);
+}
+
+int mc_light_table_pick(const struct light_table *t, float u, float *pmf)
+{
+    size_t lo = 0, hi = t->count;
+    if (t->count == 0)
+        return -1;
+    /* First i with u < cdf[i]; lights of zero power have cdf[i] == cdf[i-1] and are never chosen. */
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (u < t->cdf[mid])
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    if (lo >= t->count)
+        lo = t->count - 1;
+    *pmf = mc_light_table_pmf(t, lo);
+    return (int)lo;
+}
+
+/* Radius of a sphere bounding the scene: the environment's power is that of a disk of this radius
+ * receiving its radiance (pbrt-v4, UniformInfiniteLight::Phi). */
+static float scene_radius(const struct scene *s)
+{
+    struct aabb b = s->bvh.bounds;
+    if (!(b.hi.x >= b.lo.x))
+        return 1.0f;
+    return fmaxf(0.5f * v3_length(v3_sub(b.hi, b.lo)), 1e-6f);
+}
+
+float mc_light_power(const struct scene *s, const struct light *l)
+{
+    switch (l->kind) {
+    case LIGHT_POINT:
+        return 4.0f * MC_PI * v3_avg(l->intensity);
+    case LIGHT_AREA: {
+        const struct prim *p = &s->prims[l->prim];
+        float sides = (p->flags & PRIM_TWO_SIDED) ? 2.0f : 1.0f;
+        return MC_PI * sides * mc_prim_area(p) * v3_avg(p->emit);
+    }
+    case LIGHT_ENVIRONMENT: {
+        float r = scene_radius(s);
+        return MC_PI * MC_PI * r * r * v3_avg(l->intensity);
+    }
+    }
+    return 0.0f;
+}
+
+/* Whether light leaves primitive p's surface with front normal n toward direction w. */
+static int emits_toward(const struct prim *p, vec3 n, vec3 w)
+{
+    return (p->flags & PRIM_TWO_SIDED) || v3_dot(n, w) > 0.0f;
+}
+
+/* Sphere seen from outside: sample the cone of directions it subtends. The sampled point is
+ * found from the angle α at the centre (pbrt-v4 eq. 6.13 ff.), which stays accurate for tiny or
+ * far spheres where intersecting the sampled ray would not. 1 − cos θmax is computed as
+ * sin²θmax / (1 + cos θmax) to keep precision when the cone is tiny. */
+static int sample_sphere_cone(const struct prim *pr, vec3 p, vec2 u, struct light_sample *out)
+{
+    vec3 c = pr->p[0], to_c = v3_sub(c, p);
+    float r = pr->p[1].x, d2 = v3_length2(to_c), d = sqrtf(d2);
+    float sin2_max = r * r / d2, sin_max = sqrtf(sin2_max);
+    float cos_max = sqrtf(fmaxf(0.0f, 1.0f - sin2_max));
+    float omc = sin2_max / (1.0f + cos_max);            /* 1 − cos θmax */
+    float one_minus_cos = u.x * omc;                    /* 1 − cos θ */
+    float cos_t = 1.0f - one_minus_cos;
+    float sin2_t = one_minus_cos * (2.0f - one_minus_cos);
+    float cos_a = sin2_t / sin_max + cos_t * sqrtf(fmaxf(0.0f, 1.0f - sin2_t / sin2_max));
+    float sin_a = sqrtf(fmaxf(0.0f, 1.0f - cos_a * cos_a));
+    float phi = 2.0f * MC_PI * u.y;
+    frame f = frame_from_normal(v3_scale(to_c, 1.0f / d));
+    vec3 n = frame_to_world(&f, v3(-sin_a * cosf(phi), -sin_a * sinf(phi), -cos_a));
+    vec3 front = (pr->flags & PRIM_FLIP) ? v3_neg(n) : n;
+    vec3 q = v3_madd(c, n, r), w = v3_sub(q, p);
+    float dist = v3_length(w);
+    if (!(dist > 0.0f) || !emits_toward(pr, front, v3_neg(w)))
+        return 0;
+    out->point = q;
+    out->normal = n;
+    out->wi = v3_scale(w, 1.0f / dist);
+    out->dist = dist;
+    out->pdf = 1.0f / (2.0f * MC_PI * omc);
+    out->L = pr->emit;
+    out->delta = 0;
+    return 1;
+}
+
+/* Whether p is clearly outside sphere pr, so that the cone it subtends can be sampled. Points on
+ * the sphere itself (shading points of the light's own surface, whose distance to the centre is
+ * r within rounding) and inside it are sampled by area instead, which is valid everywhere. Both
+ * the sampler and the pdf use this one test, so they always agree. */
+static int sphere_cone_applies(const struct prim *pr, vec3 p)
+{
+    float r2 = pr->p[1].x * pr->p[1].x;
+    return v3_length2(v3_sub(p, pr->p[0])) > r2 * (1.0f + 1e-3f);
+}
+
+static int sample_area(const struct prim *pr, vec3 p, vec2 u, struct light_sample *out)
+{
+    vec3 n, q, w;
+    float dist2, dist, cos_l;
+    if (pr->kind == PRIM_SPHERE && sphere_cone_applies(pr, p))
+        return sample_sphere_cone(pr, p, u, out);
+    q = mc_prim_sample_area(pr, u, &n);
+    w = v3_sub(q, p);
+    dist2 = v3_length2(w);
+    dist = sqrtf(dist2);
+    if (!(dist > 0.0f))
+        return 0;
+    w = v3_scale(w, 1.0f / dist);
+    cos_l = fabsf(v3_dot(n, w));
+    if (!(cos_l > 0.0f) || !emits_toward(pr, n, v3_neg(w)))
+        return 0;
+    out->point = q;
+    out->normal = v3_dot(n, w) < 0.0f ? n : v3_neg(n);
+    out->wi = w;
+    out->dist = dist;
+    out->pdf = dist2 / (cos_l * mc_prim_area(pr));
+    out->L = pr->emit;
+    out->delta = 0;
+    return isfinite(out->pdf);
+}
+
+int mc_light_sample(const struct scene *s, const struct light *l, vec3 p, vec2 u,
+                    struct light_sample *out)
+{
+    switch (l->kind) {
+    case LIGHT_POINT: {
+        vec3 w = v3_sub(l->position, p);
+        float d2 = v3_length2(w), d = sqrtf(d2);
+        if (!(d > 0.0f))
+            return 0;
+        out->point = l->position;
+        out->normal = v3s(0.0f);
+        out->wi = v3_scale(w, 1.0f / d);
+        out->dist = d;
+        out->L = v3_scale(l->intensity, 1.0f / d2); /* inverse-square law: I / r² */
+        out->pdf = 1.0f;
+        out->delta = 1;
+        return 1;
+    }
+    case LIGHT_AREA:
+        return sample_area(&s->prims[l->prim], p, u, out);
+    case LIGHT_ENVIRONMENT:
+        out->wi = mc_warp_uniform_sphere(u);
+        out->dist = INFINITY;
+        out->point = out->normal = v3s(0.0f);
+        out->L = l->intensity;
+        out->pdf = mc_warp_uniform_sphere_pdf();
+        out->delta = 0;
+        return 1;
+    }
+    return 0;
+}
+
+float mc_light_pdf(const struct scene *s, const struct light *l, vec3 p, vec3 wi, float t,
+                   const struct surface *sf)
+{
+    const struct prim *pr;
+    float cos_l;
+    switch (l->kind) {
+    case LIGHT_POINT:
+        return 0.0f;
+    case LIGHT_ENVIRONMENT:
+        return mc_warp_uniform_sphere_pdf();
+    case LIGHT_AREA:
+        break;
+    }
+    pr = &s->prims[l->prim];
+    if (pr->kind == PRIM_SPHERE && sphere_cone_applies(pr, p)) {
+        float sin2_max = pr->p[1].x * pr->p[1].x / v3_length2(v3_sub(p, pr->p[0]));
+        float cos_max = sqrtf(fmaxf(0.0f, 1.0f - sin2_max));
+        return (1.0f + cos_max) / (2.0f * MC_PI * sin2_max);
+    }
+    cos_l = fabsf(v3_dot(sf->ng, wi));
+    if (!(cos_l > 0.0f))
+        return 0.0f;
+    return t * t / (cos_l * mc_prim_area(pr));
+}
+
+vec3 mc_light_emitted(const struct prim *pr, const struct surface *sf)
+{
+    if (v3_is_zero(pr->emit) || !(sf->front || (pr->flags & PRIM_TWO_SIDED)))
+        return v3s(0.0f);
+    return pr->emit;
+}

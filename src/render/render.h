@@ -1,0 +1,32 @@
+/* render.h: rendering a prepared scene into a film with a pool of threads over image tiles. */
+#ifndef MCRT_RENDER_H
+#define MCRT_RENDER_H
+
+#include "core/diag.h"
+#include "render/film.h"
+#include "scene/scene.h"
+
+struct render_settings {
+    int spp;
+    int threads;                      /* >= 1 */
+    uint64_t seed;
+    struct integrator_desc integrator;
+    int (*progress)(void *user, double done); /* serialised; nonzero return cancels */
+    void *user;
+    int *cancel;                      /* set nonzero (atomically) from anywhere to stop */
+};
+
+struct render_result {
+    double seconds;
+    uint64_t rays;
+    uint64_t nan_count;               /* non-finite samples: counted, never added */
+    int cancelled;
+};
+
+/* Render scene s into film f (already sized). Tiles of 16×16 pixels are taken by the threads from
+ * a shared counter; each pixel's samples depend only on (seed, pixel, sample index), so the film is
+ * bit-identical for any thread count. Returns MCRT_ERR_CANCELLED when stopped early. */
+mcrt_status mc_render(const struct scene *s, const struct render_settings *rs, struct film *f,
+                      struct render_result *out, mc_diag *d);
+
+#endif

@@ -1,0 +1,505 @@
+/* obj.c: Wavefront OBJ reader (see obj.h). The file is read whole and scanned line by line in
+ * place, with no allocation per token; format after Wavefront's "Object Files (.obj)" appendix B1. */
+#include "scene/obj.h"
+
+#include <errno.h>
+#include <float.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+int mc_edges_degenerate(vec3 e1, vec3 e2)
+{
+    double ax = e1.x, ay = e1.y, az = e1.z, bx = e2.x, by = e2.y, bz = e2.z;
+    double cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
+    double c2 = cx * cx + cy * cy + cz * cz;
+    double l2 = (ax * ax + ay * ay + az * az) * (bx * bx + by * by + bz * bz);
+    /* The renderer computes the normal in float: it must not underflow to zero there either.
+     * Written as !(a > b) so that a NaN (from an infinite edge) also counts as degenerate. */
+    return !(c2 > 1e-12 * l2) || !(v3_length2(v3_cross(e1, e2)) > 0.0f);
+}
+
+/* Read the whole file into a NUL-terminated buffer (the NUL stops strtod at the end). */
+static mcrt_status read_file(const struct obj_mesh *m, char **out, size_t *out_len, mc_diag *d)
+{
+    FILE *f = fopen(m->path, "rb");
+    struct stat st;
+    char *buf = NULL;
+    size_t len = 0, cap = 0;
+    int e;
+    if (!f)
+        return mc_fail(d, MCRT_ERR_IO, "%s: cannot open '%s': %s", m->origin, m->path,
+                       strerror(errno));
+    if (fstat(fileno(f), &st) == 0 && S_ISREG(st.st_mode)) {
+        if ((unsigned long long)st.st_size > MC_OBJ_MAX_BYTES)
+            goto too_large;
+        cap = (size_t)st.st_size + 1;
+        if (!(buf = malloc(cap)))
+            goto nomem;
+    }
+    for (;;) {
+        size_t got;
+        if (len + 1 >= cap) {
+            /* Full, or nothing allocated yet: grow only when the file goes on, so that a file
+             * whose size fstat gave is read with no reallocation. */
+            int c = getc(f);
+            size_t ncap = cap < 65536 ? 65536 : cap * 2;
+            char *nb;
+            if (c == EOF)
+                break;
+            if (len >= MC_OBJ_MAX_BYTES)
+                goto too_large;
+            if (ncap > MC_OBJ_MAX_BYTES + 1)
+                ncap = MC_OBJ_MAX_BYTES + 1;
+            if (!(nb = realloc(buf, ncap)))
+                goto nomem;
+            buf = nb;
+            cap = ncap;
+            buf[len++] = (char)c;
+        }
+        got = fread(buf + len, 1, cap - 1 - len, f);
+        len += got;
+        if (got == 0)
+            break;
+    }
+    e = errno;
+    if (ferror(f)) {
+        free(buf);
+        fclose(f);
+        return mc_fail(d, MCRT_ERR_IO, "%s: cannot read '%s': %s", m->origin, m->path, strerror(e));
+    }
+    if (!buf && !(buf = malloc(1))) /* an empty file of unknown size */
+        goto nomem;
+    fclose(f);
+    buf[len] = '\0';
+    *out = buf;
+    *out_len = len;
+    return MCRT_OK;
+nomem:
+    free(buf);
+    fclose(f);
+    return mc_fail(d, MCRT_ERR_NOMEM, "%s: out of memory reading '%s'", m->origin, m->path);
+too_large:
+    free(buf);
+    fclose(f);
+    return mc_fail(d, MCRT_ERR_IO, "%s: '%s' is larger than 1 GiB", m->origin, m->path);
+}
+
+/* A growable array of vec3. */
+struct vec3_array {
+    vec3 *v;
+    size_t n, cap;
+};
+
+static int vec3_push(struct vec3_array *a, vec3 x)
+{
+    if (a->n == a->cap) {
+        size_t ncap = a->cap ? a->cap * 2 : 1024;
+        vec3 *nv = realloc(a->v, ncap * sizeof *nv);
+        if (!nv)
+            return -1;
+        a->v = nv;
+        a->cap = ncap;
+    }
+    a->v[a->n++] = x;
+    return 0;
+}
+
+/* One corner of a face: indices into the vertex and normal arrays (normal -1 when absent). */
+struct corner {
+    size_t v;
+    long normal;
+};
+
+struct reader {
+    const struct obj_mesh *m;
+    struct scene *s;
+    mc_diag *d;
+    const char *line_start; /* of the line being read, for columns */
+    int line;
+    float nxf[9];           /* normal matrix: sign(det)·cofactor(A), scaled to max |entry| 1 */
+    int mirror;             /* det(A) < 0 */
+    struct vec3_array v, vn;
+    size_t vt_count;
+    struct obj_stats stats;
+};
+
+static int is_blank(int c) { return c == ' ' || c == '\t' || c == '\r'; }
+
+static const char *skip_blank(const char *p, const char *le)
+{
+    while (p < le && is_blank((unsigned char)*p))
+        p++;
+    return p;
+}
+
+static const char *token_end(const char *p, const char *le)
+{
+    while (p < le && !is_blank((unsigned char)*p))
+        p++;
+    return p;
+}
+
+/* Fail at the column of p on the current line: "path:line:col: what". */
+static mcrt_status fail_at(struct reader *r, const char *p, const char *fmt, ...) MC_PRINTF(3, 4);
+
+static mcrt_status fail_at(struct reader *r, const char *p, const char *fmt, ...)
+{
+    char what[400];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(what, sizeof what, fmt, ap);
+    va_end(ap);
+    return mc_fail(r->d, MCRT_ERR_PARSE, "%s:%d:%d: %s", r->m->path, r->line,
+                   (int)(p - r->line_start) + 1, what);
+}
+
+/* Copy the token [p, e) for a message: at most 40 bytes, bytes that are not printable ASCII as '?'. */
+static const char *show(const char *p, const char *e, char buf[48])
+{
+    size_t i, n = (size_t)(e - p) > 40 ? 40 : (size_t)(e - p);
+    for (i = 0; i < n; i++)
+        buf[i] = p[i] > 0x20 && p[i] < 0x7f ? p[i] : '?';
+    strcpy(buf + n, (size_t)(e - p) > n ? "..." : "");
+    return buf;
+}
+
+static mcrt_status nomem(struct reader *r)
+{
+    return mc_fail(r->d, MCRT_ERR_NOMEM, "%s: out of memory loading '%s'", r->m->origin, r->m->path);
+}
+
+/* Read the three numbers after a v or vn keyword (kw); anything after them (the optional w of
+ * a vertex, or the vertex colours some exporters write) is ignored. */
+static mcrt_status read_vec3(struct reader *r, const char *kw, const char *p, const char *le, vec3 *out)
+{
+    float x[3];
+    int i, kwlen = (int)(token_end(kw, le) - kw);
+    char buf[48];
+    for (i = 0; i < 3; i++) {
+        const char *q;
+        char *endp = NULL;
+        double v = 0.0;
+        p = skip_blank(p, le);
+        if (p == le)
+            return fail_at(r, kw, "'%.*s' needs 3 numbers, found %d", kwlen, kw, i);
+        q = token_end(p, le);
+        if (q - p > 255) /* as in scene files; it also bounds the time strtod may take */
+            return fail_at(r, p, "number longer than 255 characters");
+        /* strtod skips leading white space, newlines included: never let it start on one. The
+         * buffer's final NUL stops it at the end of the file. */
+        errno = 0;
+        if (*p != '\f' && *p != '\v')
+            v = strtod(p, &endp);
+        if (endp != q)
+            return fail_at(r, p, "malformed number '%s'", show(p, q, buf));
+        if (!isfinite(v) && errno != ERANGE)
+            return fail_at(r, p, "'%s' is not a finite number", show(p, q, buf));
+        if (!isfinite(v) || fabs(v) > FLT_MAX)
+            return fail_at(r, p, "number '%s' is too large (the largest is about 3.4e38)",
+                           show(p, q, buf));
+        x[i] = (float)v;
+        p = q;
+    }
+    *out = v3(x[0], x[1], x[2]);
+    return MCRT_OK;
+}
+
+static vec3 xform_point(const float *m, vec3 p)
+{
+    return v3(m[0] * p.x + m[1] * p.y + m[2] * p.z + m[3], m[4] * p.x + m[5] * p.y + m[6] * p.z + m[7],
+              m[8] * p.x + m[9] * p.y + m[10] * p.z + m[11]);
+}
+
+static mcrt_status read_vertex(struct reader *r, const char *kw, const char *le)
+{
+    vec3 p;
+    mcrt_status st = read_vec3(r, kw, kw + 1, le, &p);
+    if (st)
+        return st;
+    p = xform_point(r->m->xform, p);
+    if (!v3_is_finite(p))
+        return fail_at(r, kw, "vertex is not finite after the mesh transform");
+    return vec3_push(&r->v, p) ? nomem(r) : MCRT_OK;
+}
+
+/* A vn is stored transformed and normalised, or as zero when it has no direction (a zero
+ * vector, or one the transform collapses): faces using it are then shaded flat. */
+static mcrt_status read_normal(struct reader *r, const char *kw, const char *le)
+{
+    const float *a = r->nxf;
+    vec3 n;
+    double x, y, z, l;
+    mcrt_status st = read_vec3(r, kw, kw + 2, le, &n);
+    if (st)
+        return st;
+    x = (double)a[0] * n.x + (double)a[1] * n.y + (double)a[2] * n.z;
+    y = (double)a[3] * n.x + (double)a[4] * n.y + (double)a[5] * n.z;
+    z = (double)a[6] * n.x + (double)a[7] * n.y + (double)a[8] * n.z;
+    l = sqrt(x * x + y * y + z * z);
+    n = l > 0.0 && isfinite(l) ? v3((float)(x / l), (float)(y / l), (float)(z / l)) : v3s(0.0f);
+    return vec3_push(&r->vn, n) ? nomem(r) : MCRT_OK;
+}
+
+/* An index: an optional '-' and 1 to 12 digits (longer is out of range anyway). Returns the end,
+ * or NULL when there is none. */
+static const char *read_index(const char *p, const char *e, long long *out)
+{
+    long long v = 0;
+    int neg = p < e && *p == '-', digits = 0;
+    p += neg;
+    while (p < e && *p >= '0' && *p <= '9') {
+        if (digits++ < 12)
+            v = v * 10 + (*p - '0');
+        p++;
+    }
+    *out = neg ? -v : v;
+    return digits ? p : NULL;
+}
+
+/* Resolve an OBJ index (1-based, or negative counting back from the latest of count elements). */
+static mcrt_status resolve(struct reader *r, const char *at, long long idx, size_t count,
+                           const char *what, const char *one, const char *many, size_t *out)
+{
+    long long n = (long long)count;
+    if (idx == 0)
+        return fail_at(r, at, "%s index 0 is invalid (OBJ indices start at 1)", what);
+    if (idx > n || idx < -n)
+        return fail_at(r, at, "%s index %lld out of range (the file has %zu %s so far)", what, idx,
+                       count, count == 1 ? one : many);
+    *out = (size_t)(idx > 0 ? idx - 1 : n + idx);
+    return MCRT_OK;
+}
+
+/* One face corner in the forms v, v/vt, v//vn, v/vt/vn, spanning [p, e). */
+static mcrt_status read_corner(struct reader *r, const char *p, const char *e, struct corner *c)
+{
+    const char *q = p;
+    long long iv, it = 0, in = 0;
+    size_t unused;
+    mcrt_status st;
+    char buf[48];
+    int has_t = 0, has_n = 0;
+    q = read_index(q, e, &iv);
+    if (q && q < e && *q == '/') {
+        if (++q < e && *q == '/') {
+            q = read_index(q + 1, e, &in);
+            has_n = 1;
+        } else {
+            q = read_index(q, e, &it);
+            has_t = 1;
+            if (q && q < e && *q == '/') {
+                q = read_index(q + 1, e, &in);
+                has_n = 1;
+            }
+        }
+    }
+    if (q != e)
+        return fail_at(r, p, "malformed face vertex '%s' (expected v, v/vt, v//vn or v/vt/vn)",
+                       show(p, e, buf));
+    st = resolve(r, p, iv, r->v.n, "face", "vertex", "vertices", &c->v);
+    if (!st && has_t)
+        st = resolve(r, p, it, r->vt_count, "texture coordinate", "texture coordinate",
+                     "texture coordinates", &unused);
+    c->normal = -1;
+    if (!st && has_n) {
+        size_t n;
+        st = resolve(r, p, in, r->vn.n, "normal", "normal", "normals", &n);
+        c->normal = (long)n;
+    }
+    return st;
+}
+
+/* Add triangle (a, b, c), reversing the winding under a mirroring transform (obj.h). */
+static mcrt_status add_triangle(struct reader *r, struct corner a, struct corner b, struct corner c,
+                                int smooth)
+{
+    struct prim t = r->m->proto;
+    if (r->mirror) {
+        struct corner tmp = b;
+        b = c;
+        c = tmp;
+    }
+    t.kind = PRIM_TRIANGLE;
+    t.light = -1;
+    t.normals = -1;
+    t.p[0] = r->v.v[a.v];
+    t.p[1] = r->v.v[b.v];
+    t.p[2] = r->v.v[c.v];
+    if (mc_edges_degenerate(v3_sub(t.p[1], t.p[0]), v3_sub(t.p[2], t.p[0]))) {
+        r->stats.degenerate++;
+        return MCRT_OK;
+    }
+    if (smooth) {
+        t.normals = mc_scene_add_normals(r->s, r->vn.v[a.normal], r->vn.v[b.normal],
+                                         r->vn.v[c.normal]);
+        if (t.normals < 0)
+            return nomem(r);
+    }
+    if (mc_scene_add_prim(r->s, &t) < 0)
+        return nomem(r);
+    r->stats.triangles++;
+    return MCRT_OK;
+}
+
+/* A face: validated whole first (so that a bad corner adds nothing, and so that smooth shading
+ * is known to hold for every corner), then added as the fan (0, k, k+1). */
+static mcrt_status read_face(struct reader *r, const char *kw, const char *le)
+{
+    struct corner first = {0, -1}, prev = {0, -1}, c;
+    const char *p, *q;
+    int n = 0, smooth = 1, pass;
+    mcrt_status st;
+    for (pass = 0; pass < 2; pass++) {
+        /* A '#' ends the corners: some exporters put comments after them. */
+        for (p = skip_blank(kw + 1, le); p < le && *p != '#'; p = skip_blank(q, le)) {
+            q = token_end(p, le);
+            st = read_corner(r, p, q, &c);
+            if (st)
+                return st;
+            if (pass == 0) {
+                n++;
+                smooth = smooth && c.normal >= 0 && !v3_is_zero(r->vn.v[c.normal]);
+                continue;
+            }
+            if (n == 0)
+                first = c;
+            else if (n >= 2 && (st = add_triangle(r, first, prev, c, smooth)))
+                return st;
+            prev = c;
+            n++;
+        }
+        if (pass == 0 && n < 3)
+            return fail_at(r, kw, "a face needs at least 3 vertices, found %d", n);
+        n = 0;
+    }
+    return MCRT_OK;
+}
+
+static mcrt_status read_line(struct reader *r, const char *p, const char *le)
+{
+    const char *q, *s;
+    char buf[48];
+    size_t n;
+    p = skip_blank(p, le);
+    if (p == le || *p == '#')
+        return MCRT_OK;
+    q = token_end(p, le);
+    n = (size_t)(q - p);
+    if (n == 1 && p[0] == 'v')
+        return read_vertex(r, p, le);
+    if (n == 2 && p[0] == 'v' && p[1] == 'n')
+        return read_normal(r, p, le);
+    if (n == 2 && p[0] == 'v' && p[1] == 't') {
+        r->vt_count++;
+        return MCRT_OK;
+    }
+    if (n == 1 && p[0] == 'f')
+        return read_face(r, p, le);
+    /* Every other statement (o, g, s, usemtl, mtllib, l, p, curves...) is ignored, but only if it
+     * looks like one: a keyword of printable ASCII starting with a letter. Anything else means
+     * the file is not OBJ text. */
+    for (s = p; s < q; s++)
+        if (*s <= 0x20 || *s >= 0x7f)
+            return fail_at(r, s, "unexpected byte 0x%02x", (unsigned char)*s);
+    if (!((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z')))
+        return fail_at(r, p, "expected an OBJ statement (v, vn, f, ...), found '%s'", show(p, q, buf));
+    return MCRT_OK;
+}
+
+/* The normal matrix: the cofactor matrix of the linear part A is det(A)·A^-T; times sign(det)
+ * it maps normals like A^-T up to a positive factor, which normalisation removes. Scaled to a
+ * largest entry of 1 so that it fits a float whatever the scale of A. */
+static void normal_matrix(struct reader *r)
+{
+    const float *m = r->m->xform;
+    double a0 = m[0], a1 = m[1], a2 = m[2], a4 = m[4], a5 = m[5], a6 = m[6], a8 = m[8], a9 = m[9],
+           a10 = m[10];
+    double c[9], det, big = 0.0;
+    int i;
+    c[0] = a5 * a10 - a6 * a9;
+    c[1] = a6 * a8 - a4 * a10;
+    c[2] = a4 * a9 - a5 * a8;
+    c[3] = a2 * a9 - a1 * a10;
+    c[4] = a0 * a10 - a2 * a8;
+    c[5] = a1 * a8 - a0 * a9;
+    c[6] = a1 * a6 - a2 * a5;
+    c[7] = a2 * a4 - a0 * a6;
+    c[8] = a0 * a5 - a1 * a4;
+    det = a0 * c[0] + a1 * c[1] + a2 * c[2];
+    r->mirror = det < 0.0;
+    for (i = 0; i < 9; i++)
+        big = fmax(big, fabs(c[i]));
+    for (i = 0; i < 9; i++)
+        r->nxf[i] = big > 0.0 ? (float)((r->mirror ? -c[i] : c[i]) / big) : 0.0f;
+}
+
+/* Line and column of byte z in buf, for a message about it. */
+static void locate(struct reader *r, const char *buf, const char *z)
+{
+    const char *p;
+    r->line = 1;
+    r->line_start = buf;
+    for (p = buf; p < z; p++)
+        if (*p == '\n') {
+            r->line++;
+            r->line_start = p + 1;
+        }
+}
+
+static mcrt_status read_lines(struct reader *r, const char *buf, size_t len)
+{
+    const char *p = buf, *end = buf + len, *z = memchr(buf, '\0', len);
+    mcrt_status st = MCRT_OK;
+    if (z) {
+        locate(r, buf, z);
+        return fail_at(r, z, "unexpected byte 0x00 (an OBJ file is text)");
+    }
+    if (len >= 3 && memcmp(p, "\xef\xbb\xbf", 3) == 0)
+        p += 3; /* a UTF-8 byte order mark */
+    r->line = 0;
+    while (p < end && !st) {
+        const char *le = memchr(p, '\n', (size_t)(end - p));
+        if (!le)
+            le = end;
+        r->line++;
+        r->line_start = p;
+        st = read_line(r, p, le);
+        p = le + 1;
+    }
+    return st;
+}
+
+mcrt_status mc_obj_load(struct scene *s, const struct obj_mesh *m, struct obj_stats *stats,
+                        mc_diag *d)
+{
+    struct reader r;
+    char *buf = NULL;
+    size_t len = 0;
+    mcrt_status st;
+    memset(&r, 0, sizeof r);
+    r.m = m;
+    r.s = s;
+    r.d = d;
+    normal_matrix(&r);
+    st = read_file(m, &buf, &len, d);
+    if (st)
+        return st;
+    st = read_lines(&r, buf, len);
+    free(buf);
+    free(r.v.v);
+    free(r.vn.v);
+    if (stats)
+        *stats = r.stats;
+    if (st)
+        return st;
+    if (r.stats.triangles == 0 && r.stats.degenerate > 0)
+        return mc_fail(d, MCRT_ERR_PARSE, "%s: '%s' has no faces of nonzero area (%zu dropped)",
+                       m->origin, m->path, r.stats.degenerate);
+    if (r.stats.triangles == 0)
+        return mc_fail(d, MCRT_ERR_PARSE, "%s: '%s' has no faces", m->origin, m->path);
+    return MCRT_OK;
+}

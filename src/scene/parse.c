@@ -1,0 +1,987 @@
+/* parse.c: the mcrt scene language (for users: man/mcrt.5): blocks `kind [name] { key value ... }`
+ * read by one table-driven loop, with one key table and one finishing function per block kind. An error longjmps back to mc_scene_parse (setjmp is
+ * confined to this file, as Lua confines its error jumps to ldo.c). */
+#include "scene/scene.h"
+
+#include <float.h>
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scene/lex.h"
+#include "scene/obj.h"
+
+#if defined(__GNUC__)
+#define NORETURN __attribute__((noreturn))
+#else
+#define NORETURN
+#endif
+
+/* What a key's value is. */
+enum vkind {
+    V_REAL,      /* one number x with lo < x < hi */
+    V_INT,       /* one integer in [lo, hi] */
+    V_POINT,     /* three numbers (a point or a vector) */
+    V_RGB,       /* one number (grey) or three, none negative */
+    V_ALBEDO,    /* V_RGB at most 1: a surface reflecting more than arrives would create energy */
+    V_CHOICE,    /* one of the key's words */
+    V_NAME,      /* a material name */
+    V_PATH,      /* a quoted string */
+    V_FLAG,      /* no value */
+    V_SCALE,     /* mesh transform steps: repeatable, applied in the order written */
+    V_ROTATE,
+    V_TRANSLATE
+};
+
+struct key {
+    const char *name;
+    enum vkind kind;
+    double lo, hi;               /* V_REAL, V_INT */
+    const char *rule;            /* V_REAL: what the range is, for the message */
+    const char *const *choices;  /* V_CHOICE: NULL-terminated, in enum order */
+    const char *noun;            /* V_ALBEDO: what the number is, for the message */
+};
+
+#define MAX_KEYS 10
+
+/* The values of one block as given; the finishing function applies defaults. */
+struct value {
+    int set;
+    struct token key;            /* the key, for messages */
+    int n;                       /* numbers given */
+    double x[4];
+    struct token at[4];          /* the number tokens, for messages */
+    struct token arg;            /* V_CHOICE, V_NAME, V_PATH: the word or string */
+    int choice;
+};
+
+struct parser;
+struct block;
+
+struct block_kind {
+    const char *name;
+    const struct key *keys;
+    int nkeys;
+    int unique;                  /* at most once per scene */
+    int named;                   /* `kind NAME { ... }` */
+    void (*finish)(struct parser *p, struct block *b);
+};
+
+struct block {
+    const struct block_kind *kind;
+    struct token head, name;
+    struct value v[MAX_KEYS];
+    double xf[12];               /* mesh: the composed transform, row-major 3x4 */
+};
+
+/* A shape's `material NAME`, resolved when the whole file has been read so that materials may be
+ * defined in any order. */
+struct matref {
+    struct token name;
+    size_t first, last;          /* the shape's primitives [first, last) */
+};
+
+struct parser {
+    struct lexer lx;
+    struct token tok;            /* the lookahead */
+    struct scene *s;
+    const char *name, *base_dir;
+    mc_diag *d;
+    jmp_buf jump;
+    mcrt_status status;
+    struct matref *refs;
+    size_t nrefs, cap_refs;
+    struct token *defs;          /* name token of each material this file defined, in order */
+    size_t ndefs, cap_defs, first_material;
+    struct token seen[16];       /* first block of each unique kind (line 0: none yet) */
+};
+
+/* ---- Errors ---- */
+
+static void NORETURN throw(struct parser *p, mcrt_status status)
+{
+    p->status = status;
+    longjmp(p->jump, 1);
+}
+
+static void fail(struct parser *p, const struct token *at, const char *fmt, ...) MC_PRINTF(3, 4) NORETURN;
+
+static void fail(struct parser *p, const struct token *at, const char *fmt, ...)
+{
+    char what[448];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(what, sizeof what, fmt, ap);
+    va_end(ap);
+    mc_fail(p->d, MCRT_ERR_PARSE, "%s:%d:%d: %s", p->name, at->line, at->col, what);
+    throw(p, MCRT_ERR_PARSE);
+}
+
+static void NORETURN fail_nomem(struct parser *p)
+{
+    mc_fail(p->d, MCRT_ERR_NOMEM, "%s: out of memory", p->name);
+    throw(p, MCRT_ERR_NOMEM);
+}
+
+/* A token as a message shows it; long words are cut at 64 bytes. */
+static const char *describe(const struct token *t, char buf[96])
+{
+    int n = t->len > 64 ? 64 : (int)t->len;
+    switch (t->kind) {
+    case TOK_WORD: snprintf(buf, 96, "'%.*s'", n, t->text); break;
+    case TOK_NUMBER: snprintf(buf, 96, "number '%.*s'", n, t->text); break;
+    case TOK_STRING: snprintf(buf, 96, "a string"); break;
+    case TOK_LBRACE: snprintf(buf, 96, "'{'"); break;
+    case TOK_RBRACE: snprintf(buf, 96, "'}'"); break;
+    default: snprintf(buf, 96, "end of file"); break;
+    }
+    return buf;
+}
+
+static void NORETURN fail_unclosed(struct parser *p, const struct block *b)
+{
+    fail(p, &p->tok, "unexpected end of file: block '%s' opened at %d:%d is not closed",
+         b->kind->name, b->head.line, b->head.col);
+}
+
+/* ---- Did-you-mean (after Clang's typo correction): the closest candidate by optimal string
+ * alignment distance (Levenshtein plus adjacent transpositions), if it is close enough. ---- */
+
+struct match {
+    const char *word;
+    size_t len;
+    const char *best;
+    int dist;
+};
+
+static int osa_distance(const char *a, size_t n, const char *b, size_t m)
+{
+    int rows[3][65], *pp = rows[0], *prev = rows[1], *cur = rows[2];
+    size_t i, j;
+    if (n > 64 || m > 64)
+        return 1000;
+    for (j = 0; j <= m; j++)
+        prev[j] = (int)j;
+    for (i = 1; i <= n; i++) {
+        int *t;
+        cur[0] = (int)i;
+        for (j = 1; j <= m; j++) {
+            int cost = a[i - 1] != b[j - 1], v = prev[j - 1] + cost;
+            if (prev[j] + 1 < v)
+                v = prev[j] + 1;
+            if (cur[j - 1] + 1 < v)
+                v = cur[j - 1] + 1;
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] && pp[j - 2] + 1 < v)
+                v = pp[j - 2] + 1;
+            cur[j] = v;
+        }
+        t = pp;
+        pp = prev;
+        prev = cur;
+        cur = t;
+    }
+    return prev[m];
+}
+
+static void consider(struct match *m, const char *candidate)
+{
+    size_t len = strlen(candidate);
+    int d = osa_distance(m->word, m->len, candidate, len);
+    int limit = len <= 3 ? 1 : len <= 6 ? 2 : 3;
+    if (d <= limit && (!m->best || d < m->dist)) {
+        m->best = candidate;
+        m->dist = d;
+    }
+}
+
+static struct match matcher(const struct token *t)
+{
+    struct match m;
+    m.word = t->text;
+    m.len = t->len;
+    m.best = NULL;
+    m.dist = 0;
+    return m;
+}
+
+static int token_is(const struct token *t, const char *s)
+{
+    return t->len == strlen(s) && memcmp(t->text, s, t->len) == 0;
+}
+
+/* ---- Tokens and values ---- */
+
+static void advance(struct parser *p)
+{
+    if (mc_lex_next(&p->lx, &p->tok) == TOK_ERROR)
+        throw(p, MCRT_ERR_PARSE);
+}
+
+/* Whether t spells a non-number that strtod would accept (nan, inf, infinity, any case). */
+static int is_nonfinite_word(const struct token *t)
+{
+    static const char *const words[] = {"nan", "inf", "infinity"};
+    size_t i, j;
+    for (i = 0; i < 3; i++) {
+        if (t->len != strlen(words[i]))
+            continue;
+        for (j = 0; j < t->len && (t->text[j] | 0x20) == words[i][j]; j++)
+            ;
+        if (j == t->len)
+            return 1;
+    }
+    return 0;
+}
+
+/* Read the numbers after a key into v: all of them, so that a wrong count is reported as such. */
+static void read_numbers(struct parser *p, struct value *v)
+{
+    for (;;) {
+        if (p->tok.kind == TOK_WORD && is_nonfinite_word(&p->tok))
+            fail(p, &p->tok, "'%.*s' is not a finite number", (int)p->tok.len, p->tok.text);
+        if (p->tok.kind != TOK_NUMBER)
+            return;
+        if (v->n < 4) {
+            /* Rounded to float first, so that every check sees the value the scene stores
+             * (1e-50 is a zero scale, not a tiny one). */
+            v->x[v->n] = (float)p->tok.num;
+            v->at[v->n] = p->tok;
+        }
+        v->n++; /* cannot overflow: each number takes at least two bytes of a text below 2^30 */
+        advance(p);
+    }
+}
+
+static void check_count(struct parser *p, const struct block *b, const struct key *k,
+                        const struct value *v)
+{
+    int one_or_three = k->kind == V_RGB || k->kind == V_ALBEDO || k->kind == V_SCALE;
+    int want = k->kind == V_POINT || k->kind == V_TRANSLATE ? 3 : k->kind == V_ROTATE ? 4 : 1;
+    if (one_or_three ? v->n == 1 || v->n == 3 : v->n == want)
+        return;
+    if (p->tok.kind == TOK_EOF)
+        fail_unclosed(p, b);
+    if (one_or_three)
+        fail(p, &v->key, "'%s' needs 1 or 3 numbers, found %d", k->name, v->n);
+    if (k->kind == V_ROTATE)
+        fail(p, &v->key, "'%s' needs 4 numbers (an axis and an angle in degrees), found %d",
+             k->name, v->n);
+    fail(p, &v->key, "'%s' needs %d number%s, found %d", k->name, want, want == 1 ? "" : "s", v->n);
+}
+
+static vec3 vec_of(const struct value *v)
+{
+    return v->n == 1 ? v3s((float)v->x[0]) : v3((float)v->x[0], (float)v->x[1], (float)v->x[2]);
+}
+
+/* ---- Mesh transforms ---- */
+
+/* xf = s·xf for the affine maps s and xf (row-major 3x4): s is applied after what is there. */
+static void compose(struct parser *p, struct block *b, const double s[12], const struct token *at)
+{
+    double r[12];
+    int i, j;
+    for (i = 0; i < 3; i++)
+        for (j = 0; j < 4; j++) {
+            double x = s[4 * i] * b->xf[j] + s[4 * i + 1] * b->xf[4 + j] + s[4 * i + 2] * b->xf[8 + j];
+            r[4 * i + j] = j == 3 ? x + s[4 * i + 3] : x;
+            if (!(fabs(r[4 * i + j]) <= FLT_MAX))
+                fail(p, at, "'%.*s' makes the mesh transform too large for a float",
+                     (int)at->len, at->text);
+        }
+    memcpy(b->xf, r, sizeof r);
+}
+
+static void transform_step(struct parser *p, struct block *b, const struct key *k,
+                           const struct value *v)
+{
+    double s[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+    int i;
+    if (k->kind == V_TRANSLATE) {
+        s[3] = v->x[0];
+        s[7] = v->x[1];
+        s[11] = v->x[2];
+    } else if (k->kind == V_SCALE) {
+        for (i = 0; i < 3; i++) {
+            int at = v->n == 1 ? 0 : i;
+            if (v->x[at] == 0.0)
+                fail(p, &v->at[at], "'scale' must not be zero");
+            s[5 * i] = v->x[at];
+        }
+    } else {
+        /* Rodrigues' rotation formula: R = cos·I + sin·[a]x + (1 - cos)·a·aT, right-handed. */
+        double x = v->x[0], y = v->x[1], z = v->x[2], l = sqrt(x * x + y * y + z * z);
+        double th = v->x[3] * (3.14159265358979323846 / 180.0), c = cos(th), sn = sin(th);
+        if (!(l > 0.0))
+            fail(p, &v->key, "'rotate' axis has zero length");
+        x /= l;
+        y /= l;
+        z /= l;
+        s[0] = c + x * x * (1 - c);
+        s[1] = x * y * (1 - c) - z * sn;
+        s[2] = x * z * (1 - c) + y * sn;
+        s[4] = y * x * (1 - c) + z * sn;
+        s[5] = c + y * y * (1 - c);
+        s[6] = y * z * (1 - c) - x * sn;
+        s[8] = z * x * (1 - c) - y * sn;
+        s[9] = z * y * (1 - c) + x * sn;
+        s[10] = c + z * z * (1 - c);
+    }
+    compose(p, b, s, &v->key);
+}
+
+/* ---- Keys ---- */
+
+/* Append word to the comma-separated list in buf[0..size), *n bytes long so far; a list too long
+ * for buf is cut short. */
+static void list_add(char *buf, size_t size, size_t *n, const char *word)
+{
+    if (*n == 0)
+        buf[0] = '\0';
+    if (*n < size) {
+        int w = snprintf(buf + *n, size - *n, "%s%s", *n ? ", " : "", word);
+        *n = w < 0 || (size_t)w >= size - *n ? size : *n + (size_t)w;
+    }
+}
+
+static int find_key(struct parser *p, const struct block *b)
+{
+    const struct block_kind *kind = b->kind;
+    struct match m = matcher(&p->tok);
+    char keys[200];
+    size_t n = 0;
+    int i;
+    for (i = 0; i < kind->nkeys; i++)
+        if (token_is(&p->tok, kind->keys[i].name))
+            return i;
+    for (i = 0; i < kind->nkeys; i++)
+        consider(&m, kind->keys[i].name);
+    if (m.best)
+        fail(p, &p->tok, "unknown key '%.*s' in %s (did you mean '%s'?)", (int)p->tok.len,
+             p->tok.text, kind->name, m.best);
+    for (i = 0; i < kind->nkeys; i++)
+        list_add(keys, sizeof keys, &n, kind->keys[i].name);
+    fail(p, &p->tok, "unknown key '%.*s' in %s (its keys: %s)", (int)p->tok.len, p->tok.text,
+         kind->name, keys);
+}
+
+static void read_choice(struct parser *p, const struct block *b, const struct key *k,
+                        struct value *v)
+{
+    char list[128];
+    size_t n = 0;
+    struct match m = matcher(&p->tok);
+    int i;
+    for (i = 0; k->choices[i]; i++) {
+        list_add(list, sizeof list, &n, k->choices[i]);
+        if (p->tok.kind == TOK_WORD && token_is(&p->tok, k->choices[i])) {
+            v->choice = i;
+            v->arg = p->tok;
+            advance(p);
+            return;
+        }
+        consider(&m, k->choices[i]);
+    }
+    if (p->tok.kind == TOK_EOF)
+        fail_unclosed(p, b);
+    if (p->tok.kind != TOK_WORD)
+        fail(p, &v->key, "'%s' needs one of: %s", k->name, list);
+    if (m.best)
+        fail(p, &p->tok, "unknown %s '%.*s' (did you mean '%s'?)", k->name, (int)p->tok.len,
+             p->tok.text, m.best);
+    fail(p, &p->tok, "unknown %s '%.*s' (choices: %s)", k->name, (int)p->tok.len, p->tok.text, list);
+}
+
+/* Check the numbers of a numeric value against its kind. */
+static void check_numbers(struct parser *p, const struct key *k, const struct value *v)
+{
+    int i;
+    switch (k->kind) {
+    case V_REAL:
+        if (!(k->lo < v->x[0] && v->x[0] < k->hi))
+            fail(p, &v->at[0], "'%s' %s", k->name, k->rule);
+        break;
+    case V_INT: /* on the unrounded value: 16777217 must not pass as 16777216 */
+        if (!(v->at[0].num >= k->lo && v->at[0].num <= k->hi) || v->at[0].num != floor(v->at[0].num))
+            fail(p, &v->at[0], "'%s' must be an integer from %.0f to %.0f, not '%.*s'", k->name,
+                 k->lo, k->hi, (int)v->at[0].len, v->at[0].text);
+        break;
+    case V_RGB:
+    case V_ALBEDO:
+        for (i = 0; i < v->n; i++) {
+            if (v->x[i] < 0.0)
+                fail(p, &v->at[i], "'%s' must not be negative", k->name);
+            if (k->kind == V_ALBEDO && v->x[i] > 1.0)
+                fail(p, &v->at[i], "'%s' must be at most 1 (%s above 1 creates energy)", k->name,
+                     k->noun);
+        }
+        break;
+    default:
+        break;
+    }
+}
+
+static void read_key(struct parser *p, struct block *b)
+{
+    int idx = find_key(p, b);
+    const struct key *k = &b->kind->keys[idx];
+    struct value *v = &b->v[idx];
+    int step = k->kind == V_SCALE || k->kind == V_ROTATE || k->kind == V_TRANSLATE;
+    if (v->set && !step)
+        fail(p, &p->tok, "duplicate key '%s' in %s (first given at %d:%d)", k->name, b->kind->name,
+             v->key.line, v->key.col);
+    v->set = 1;
+    v->key = p->tok;
+    v->n = 0;
+    advance(p);
+    switch (k->kind) {
+    case V_FLAG:
+        if (p->tok.kind == TOK_NUMBER)
+            fail(p, &p->tok, "'%s' is a flag and takes no value", k->name);
+        return;
+    case V_CHOICE:
+        read_choice(p, b, k, v);
+        return;
+    case V_NAME:
+    case V_PATH:
+        if (p->tok.kind == TOK_EOF)
+            fail_unclosed(p, b);
+        if (k->kind == V_NAME && p->tok.kind != TOK_WORD)
+            fail(p, &v->key, "'%s' needs a material name", k->name);
+        if (k->kind == V_PATH && p->tok.kind != TOK_STRING)
+            fail(p, &v->key, "'%s' needs a path in double quotes", k->name);
+        if (p->tok.len == 0)
+            fail(p, &p->tok, "'%s' path is empty", k->name);
+        v->arg = p->tok;
+        advance(p);
+        return;
+    default:
+        read_numbers(p, v);
+        check_count(p, b, k, v);
+        check_numbers(p, k, v);
+        if (step)
+            transform_step(p, b, k, v);
+        return;
+    }
+}
+
+/* Whether token a comes after token b in the file. */
+static int after(const struct token *a, const struct token *b)
+{
+    return a->line > b->line || (a->line == b->line && a->col > b->col);
+}
+
+/* The given key of b that comes last in the file among keys[0..n), or the block's head: where a
+ * message about a combination of values points. */
+static const struct token *latest(const struct block *b, int n, const int *keys)
+{
+    const struct token *t = &b->head;
+    int i;
+    for (i = 0; i < n; i++)
+        if (b->v[keys[i]].set && after(&b->v[keys[i]].key, t))
+            t = &b->v[keys[i]].key;
+    return t;
+}
+
+/* ---- Blocks ---- */
+
+static const char *const sampler_names[] = {"random", "stratified", NULL};
+static const char *const filter_names[] = {"box", NULL};
+static const char *const method_names[] = {"path", "direct", NULL};
+
+enum { FILM_WIDTH, FILM_HEIGHT, FILM_SPP, FILM_SAMPLER, FILM_FILTER };
+static const struct key film_keys[] = {
+    {"width", V_INT, 1, 65536, NULL, NULL, NULL},
+    {"height", V_INT, 1, 65536, NULL, NULL, NULL},
+    {"spp", V_INT, 1, 16777216, NULL, NULL, NULL},
+    {"sampler", V_CHOICE, 0, 0, NULL, sampler_names, NULL},
+    {"filter", V_CHOICE, 0, 0, NULL, filter_names, NULL},
+};
+
+static void finish_film(struct parser *p, struct block *b)
+{
+    static const int size_keys[] = {FILM_WIDTH, FILM_HEIGHT};
+    struct film_desc *f = &p->s->film;
+    if (b->v[FILM_WIDTH].set)
+        f->width = (int)b->v[FILM_WIDTH].at[0].num;
+    if (b->v[FILM_HEIGHT].set)
+        f->height = (int)b->v[FILM_HEIGHT].at[0].num;
+    if (b->v[FILM_SPP].set)
+        f->spp = (int)b->v[FILM_SPP].at[0].num;
+    if (b->v[FILM_SAMPLER].set)
+        f->sampler = (enum sampler_kind)b->v[FILM_SAMPLER].choice;
+    if (b->v[FILM_FILTER].set)
+        f->filter = (enum filter_kind)b->v[FILM_FILTER].choice;
+    if ((long long)f->width * f->height > (1LL << 28))
+        fail(p, latest(b, 2, size_keys), "film of %d x %d pixels is too large (the limit is 2^28 "
+             "pixels)", f->width, f->height);
+}
+
+enum { CAM_EYE, CAM_LOOK, CAM_UP, CAM_FOV };
+static const struct key camera_keys[] = {
+    {"eye", V_POINT, 0, 0, NULL, NULL, NULL},
+    {"look", V_POINT, 0, 0, NULL, NULL, NULL},
+    {"up", V_POINT, 0, 0, NULL, NULL, NULL},
+    {"fov", V_REAL, 0, 180, "must be between 0 and 180 degrees", NULL, NULL},
+};
+
+static void finish_camera(struct parser *p, struct block *b)
+{
+    static const int ends[] = {CAM_EYE, CAM_LOOK}, all[] = {CAM_EYE, CAM_LOOK, CAM_UP};
+    struct camera_desc *c = &p->s->camera;
+    float dist2;
+    if (b->v[CAM_EYE].set)
+        c->eye = vec_of(&b->v[CAM_EYE]);
+    if (b->v[CAM_LOOK].set)
+        c->look = vec_of(&b->v[CAM_LOOK]);
+    if (b->v[CAM_UP].set)
+        c->up = vec_of(&b->v[CAM_UP]);
+    if (b->v[CAM_FOV].set)
+        c->fov = (float)b->v[CAM_FOV].x[0];
+    /* The camera normalises look - eye and up in float: both lengths must be usable there. */
+    dist2 = v3_length2(v3_sub(c->look, c->eye));
+    if (!(dist2 > 0.0f))
+        fail(p, latest(b, 2, ends), "camera 'eye' and 'look' are the same point");
+    if (!isfinite(dist2))
+        fail(p, latest(b, 2, ends), "camera 'eye' and 'look' are too far apart for a float");
+    if (!(v3_length2(c->up) > 0.0f))
+        fail(p, latest(b, 3, all), "camera 'up' has zero length");
+    if (mc_edges_degenerate(v3_sub(c->look, c->eye), c->up))
+        fail(p, latest(b, 3, all), "camera 'up' is parallel to the view direction from 'eye' to "
+             "'look'");
+}
+
+enum { INT_METHOD, INT_MAX_DEPTH, INT_RR_DEPTH };
+static const struct key integrator_keys[] = {
+    {"method", V_CHOICE, 0, 0, NULL, method_names, NULL},
+    {"max_depth", V_INT, 0, 65536, NULL, NULL, NULL},
+    {"rr_depth", V_INT, 0, 65536, NULL, NULL, NULL},
+};
+
+static void finish_integrator(struct parser *p, struct block *b)
+{
+    struct integrator_desc *it = &p->s->integrator;
+    if (b->v[INT_METHOD].set)
+        it->method = (enum integrator_kind)b->v[INT_METHOD].choice;
+    if (b->v[INT_MAX_DEPTH].set)
+        it->max_depth = (int)b->v[INT_MAX_DEPTH].at[0].num;
+    if (b->v[INT_RR_DEPTH].set)
+        it->rr_depth = (int)b->v[INT_RR_DEPTH].at[0].num;
+}
+
+enum { MAT_DIFFUSE, MAT_MIRROR, MAT_GLASS, MAT_IOR, MAT_TINT };
+static const struct key material_keys[] = {
+    {"diffuse", V_ALBEDO, 0, 0, NULL, NULL, "albedo"},
+    {"mirror", V_ALBEDO, 0, 0, NULL, NULL, "reflectance"},
+    {"glass", V_FLAG, 0, 0, NULL, NULL, NULL},
+    {"ior", V_REAL, 0, INFINITY, "must be positive", NULL, NULL},
+    {"tint", V_ALBEDO, 0, 0, NULL, NULL, "tint"},
+};
+
+/* array, with room for at least count + 1 elements of size elem (capacity *cap, doubled). */
+static void *grow(struct parser *p, void *array, size_t *cap, size_t count, size_t elem)
+{
+    size_t ncap;
+    void *q;
+    if (count < *cap)
+        return array;
+    ncap = *cap ? *cap * 2 : 16;
+    if (!(q = realloc(array, ncap * elem)))
+        fail_nomem(p);
+    *cap = ncap;
+    return q;
+}
+
+static void finish_material(struct parser *p, struct block *b)
+{
+    const struct token *nm = &b->name;
+    struct material m;
+    int i, given = 0, first = -1, idx;
+    if (nm->len >= sizeof m.name)
+        fail(p, nm, "material name longer than %d characters", (int)sizeof m.name - 1);
+    memset(&m, 0, sizeof m);
+    memcpy(m.name, nm->text, nm->len);
+    if ((idx = mc_scene_find_material(p->s, m.name)) >= (int)p->first_material) {
+        const struct token *d = &p->defs[(size_t)idx - p->first_material];
+        fail(p, nm, "duplicate material '%s' (first defined at %d:%d)", m.name, d->line, d->col);
+    }
+    if (idx >= 0)
+        fail(p, nm, "duplicate material '%s'", m.name);
+    for (i = MAT_DIFFUSE; i <= MAT_GLASS; i++) {
+        const struct value *v = &b->v[i], *f = &b->v[first < 0 ? i : first];
+        if (!v->set)
+            continue;
+        if (given++)
+            fail(p, after(&v->key, &f->key) ? &v->key : &f->key,
+                 "material '%s' has both '%s' and '%s': give one", m.name,
+                 material_keys[first].name, material_keys[i].name);
+        first = i;
+    }
+    if (!given)
+        fail(p, nm, "material '%s' needs one of 'diffuse', 'mirror' or 'glass'", m.name);
+    if (first != MAT_GLASS)
+        for (i = MAT_IOR; i <= MAT_TINT; i++)
+            if (b->v[i].set)
+                fail(p, &b->v[i].key, "'%s' is only for glass materials", material_keys[i].name);
+    m.kind = first == MAT_DIFFUSE ? MATERIAL_DIFFUSE : first == MAT_MIRROR ? MATERIAL_MIRROR
+                                                                            : MATERIAL_GLASS;
+    m.color = first == MAT_GLASS ? (b->v[MAT_TINT].set ? vec_of(&b->v[MAT_TINT]) : v3s(1.0f))
+                                 : vec_of(&b->v[first]);
+    m.ior = b->v[MAT_IOR].set ? (float)b->v[MAT_IOR].x[0] : 1.5f;
+    p->defs = grow(p, p->defs, &p->cap_defs, p->ndefs, sizeof *p->defs);
+    p->defs[p->ndefs++] = *nm;
+    if (mc_scene_add_material(p->s, &m) < 0)
+        fail_nomem(p);
+}
+
+/* Every shape takes these first four keys. */
+#define SHAPE_KEYS                                                                             \
+    {"material", V_NAME, 0, 0, NULL, NULL, NULL}, {"emit", V_RGB, 0, 0, NULL, NULL, NULL},     \
+    {"two_sided", V_FLAG, 0, 0, NULL, NULL, NULL}, {"flip", V_FLAG, 0, 0, NULL, NULL, NULL}
+enum { SHAPE_MATERIAL, SHAPE_EMIT, SHAPE_TWO_SIDED, SHAPE_FLIP, SHAPE_KEYS_END };
+
+/* The primitive fields every shape sets the same way; the material is resolved at the end. */
+static struct prim shape_proto(const struct block *b)
+{
+    struct prim pr;
+    memset(&pr, 0, sizeof pr);
+    pr.material = 0;
+    pr.light = -1;
+    pr.normals = -1;
+    if (b->v[SHAPE_EMIT].set)
+        pr.emit = vec_of(&b->v[SHAPE_EMIT]);
+    pr.flags = (uint8_t)((b->v[SHAPE_TWO_SIDED].set ? PRIM_TWO_SIDED : 0)
+                         | (b->v[SHAPE_FLIP].set ? PRIM_FLIP : 0));
+    return pr;
+}
+
+/* Remember that the shape's primitives [first, scene count) use the material it names. */
+static void note_material(struct parser *p, const struct block *b, size_t first)
+{
+    struct matref *r;
+    if (!b->v[SHAPE_MATERIAL].set)
+        return;
+    p->refs = grow(p, p->refs, &p->cap_refs, p->nrefs, sizeof *p->refs);
+    r = &p->refs[p->nrefs++];
+    r->name = b->v[SHAPE_MATERIAL].arg;
+    r->first = first;
+    r->last = p->s->prim_count;
+}
+
+static void add_shape(struct parser *p, const struct block *b, const struct prim *pr)
+{
+    size_t first = p->s->prim_count;
+    if (mc_scene_add_prim(p->s, pr) < 0)
+        fail_nomem(p);
+    note_material(p, b, first);
+}
+
+/* The value of key k, or the default when it was not given. */
+static vec3 vec_or(const struct block *b, int k, vec3 def)
+{
+    return b->v[k].set ? vec_of(&b->v[k]) : def;
+}
+
+enum { SPHERE_CENTER = SHAPE_KEYS_END, SPHERE_RADIUS };
+static const struct key sphere_keys[] = {
+    SHAPE_KEYS,
+    {"center", V_POINT, 0, 0, NULL, NULL, NULL},
+    {"radius", V_REAL, 0, INFINITY, "must be positive", NULL, NULL},
+};
+
+static void finish_sphere(struct parser *p, struct block *b)
+{
+    struct prim pr = shape_proto(b);
+    pr.kind = PRIM_SPHERE;
+    pr.p[0] = vec_or(b, SPHERE_CENTER, v3s(0.0f));
+    pr.p[1] = v3(b->v[SPHERE_RADIUS].set ? (float)b->v[SPHERE_RADIUS].x[0] : 1.0f, 0.0f, 0.0f);
+    add_shape(p, b, &pr);
+}
+
+enum { QUAD_CORNER = SHAPE_KEYS_END, QUAD_EDGE1, QUAD_EDGE2 };
+static const struct key quad_keys[] = {
+    SHAPE_KEYS,
+    {"corner", V_POINT, 0, 0, NULL, NULL, NULL},
+    {"edge1", V_POINT, 0, 0, NULL, NULL, NULL},
+    {"edge2", V_POINT, 0, 0, NULL, NULL, NULL},
+};
+
+/* Default: the 2 x 2 square centred on the origin in the z = 0 plane, facing +z. */
+static void finish_quad(struct parser *p, struct block *b)
+{
+    static const int edges[] = {QUAD_EDGE1, QUAD_EDGE2};
+    struct prim pr = shape_proto(b);
+    int i;
+    pr.kind = PRIM_QUAD;
+    pr.p[0] = vec_or(b, QUAD_CORNER, v3(-1.0f, -1.0f, 0.0f));
+    pr.p[1] = vec_or(b, QUAD_EDGE1, v3(2.0f, 0.0f, 0.0f));
+    pr.p[2] = vec_or(b, QUAD_EDGE2, v3(0.0f, 2.0f, 0.0f));
+    for (i = 0; i < 2; i++)
+        if (v3_is_zero(pr.p[1 + i]))
+            fail(p, &b->v[edges[i]].key, "'%s' has zero length", quad_keys[edges[i]].name);
+    if (mc_edges_degenerate(pr.p[1], pr.p[2]))
+        fail(p, latest(b, 2, edges), "quad edges 'edge1' and 'edge2' are parallel");
+    add_shape(p, b, &pr);
+}
+
+enum { TRI_V0 = SHAPE_KEYS_END, TRI_V1, TRI_V2 };
+static const struct key triangle_keys[] = {
+    SHAPE_KEYS,
+    {"v0", V_POINT, 0, 0, NULL, NULL, NULL},
+    {"v1", V_POINT, 0, 0, NULL, NULL, NULL},
+    {"v2", V_POINT, 0, 0, NULL, NULL, NULL},
+};
+
+/* Default: (-1,-1,0), (1,-1,0), (0,1,0), facing +z. */
+static void finish_triangle(struct parser *p, struct block *b)
+{
+    static const int verts[] = {TRI_V0, TRI_V1, TRI_V2};
+    struct prim pr = shape_proto(b);
+    pr.kind = PRIM_TRIANGLE;
+    pr.p[0] = vec_or(b, TRI_V0, v3(-1.0f, -1.0f, 0.0f));
+    pr.p[1] = vec_or(b, TRI_V1, v3(1.0f, -1.0f, 0.0f));
+    pr.p[2] = vec_or(b, TRI_V2, v3(0.0f, 1.0f, 0.0f));
+    if (mc_edges_degenerate(v3_sub(pr.p[1], pr.p[0]), v3_sub(pr.p[2], pr.p[0])))
+        fail(p, latest(b, 3, verts), "triangle has zero area (its vertices are collinear)");
+    add_shape(p, b, &pr);
+}
+
+enum { MESH_FILE = SHAPE_KEYS_END, MESH_SCALE, MESH_ROTATE, MESH_TRANSLATE };
+static const struct key mesh_keys[] = {
+    SHAPE_KEYS,
+    {"file", V_PATH, 0, 0, NULL, NULL, NULL},
+    {"scale", V_SCALE, 0, 0, NULL, NULL, NULL},
+    {"rotate", V_ROTATE, 0, 0, NULL, NULL, NULL},
+    {"translate", V_TRANSLATE, 0, 0, NULL, NULL, NULL},
+};
+
+/* The OBJ path: as written when absolute or when there is no base directory, else under it. */
+static char *mesh_path(struct parser *p, const struct token *file)
+{
+    size_t nb = p->base_dir && file->text[0] != '/' ? strlen(p->base_dir) : 0;
+    int slash = nb > 0 && p->base_dir[nb - 1] != '/';
+    char *path = malloc(nb + (size_t)slash + file->len + 1);
+    if (!path)
+        fail_nomem(p);
+    memcpy(path, p->base_dir, nb);
+    if (slash)
+        path[nb] = '/';
+    memcpy(path + nb + slash, file->text, file->len);
+    path[nb + (size_t)slash + file->len] = '\0';
+    return path;
+}
+
+static void finish_mesh(struct parser *p, struct block *b)
+{
+    const struct token *file = &b->v[MESH_FILE].arg;
+    char origin[600];
+    struct obj_mesh m;
+    size_t first = p->s->prim_count;
+    mcrt_status st;
+    int i;
+    if (!b->v[MESH_FILE].set)
+        fail(p, &b->head, "mesh needs 'file \"NAME.obj\"'");
+    snprintf(origin, sizeof origin, "%s:%d:%d", p->name, file->line, file->col);
+    m.path = mesh_path(p, file);
+    m.origin = origin;
+    for (i = 0; i < 12; i++)
+        m.xform[i] = (float)b->xf[i];
+    m.proto = shape_proto(b);
+    st = mc_obj_load(p->s, &m, NULL, p->d);
+    free((char *)m.path);
+    if (st)
+        throw(p, st);
+    note_material(p, b, first);
+}
+
+enum { POINT_POSITION, POINT_INTENSITY };
+static const struct key point_light_keys[] = {
+    {"position", V_POINT, 0, 0, NULL, NULL, NULL},
+    {"intensity", V_RGB, 0, 0, NULL, NULL, NULL},
+};
+
+/* Defaults as pbrt's point light: at the origin, intensity 1. */
+static void finish_point_light(struct parser *p, struct block *b)
+{
+    struct light l;
+    memset(&l, 0, sizeof l);
+    l.kind = LIGHT_POINT;
+    l.position = vec_or(b, POINT_POSITION, v3s(0.0f));
+    l.intensity = vec_or(b, POINT_INTENSITY, v3s(1.0f));
+    if (mc_scene_add_light(p->s, &l) < 0)
+        fail_nomem(p);
+}
+
+enum { ENV_RADIANCE };
+static const struct key environment_keys[] = {
+    {"radiance", V_RGB, 0, 0, NULL, NULL, NULL},
+};
+
+/* Default radiance 1: the white sky a scene without lights gets anyway. */
+static void finish_environment(struct parser *p, struct block *b)
+{
+    p->s->has_environment = 1;
+    p->s->environment = vec_or(b, ENV_RADIANCE, v3s(1.0f));
+}
+
+#define KEYS(k) k, (int)(sizeof k / sizeof k[0])
+static const struct block_kind block_kinds[] = {
+    {"film", KEYS(film_keys), 1, 0, finish_film},
+    {"camera", KEYS(camera_keys), 1, 0, finish_camera},
+    {"integrator", KEYS(integrator_keys), 1, 0, finish_integrator},
+    {"material", KEYS(material_keys), 0, 1, finish_material},
+    {"sphere", KEYS(sphere_keys), 0, 0, finish_sphere},
+    {"quad", KEYS(quad_keys), 0, 0, finish_quad},
+    {"triangle", KEYS(triangle_keys), 0, 0, finish_triangle},
+    {"mesh", KEYS(mesh_keys), 0, 0, finish_mesh},
+    {"point_light", KEYS(point_light_keys), 0, 0, finish_point_light},
+    {"environment", KEYS(environment_keys), 1, 0, finish_environment},
+};
+#define BLOCK_KIND_COUNT (int)(sizeof block_kinds / sizeof block_kinds[0])
+
+/* Compile-time checks: struct block holds MAX_KEYS values (the mesh has the most keys), and the
+ * parser remembers the first block of up to 16 kinds. */
+typedef char check_max_keys[sizeof mesh_keys / sizeof mesh_keys[0] <= MAX_KEYS ? 1 : -1];
+typedef char check_kinds[sizeof block_kinds / sizeof block_kinds[0] <= 16 ? 1 : -1];
+
+static int find_block(struct parser *p)
+{
+    struct match m = matcher(&p->tok);
+    char list[200];
+    size_t n = 0;
+    int i;
+    if (p->tok.kind != TOK_WORD) {
+        char buf[96];
+        fail(p, &p->tok, "expected a block such as 'sphere { }', found %s", describe(&p->tok, buf));
+    }
+    for (i = 0; i < BLOCK_KIND_COUNT; i++)
+        if (token_is(&p->tok, block_kinds[i].name))
+            return i;
+    for (i = 0; i < BLOCK_KIND_COUNT; i++) {
+        consider(&m, block_kinds[i].name);
+        list_add(list, sizeof list, &n, block_kinds[i].name);
+    }
+    if (m.best)
+        fail(p, &p->tok, "unknown block '%.*s' (did you mean '%s'?)", (int)p->tok.len, p->tok.text,
+             m.best);
+    fail(p, &p->tok, "unknown block '%.*s' (blocks: %s)", (int)p->tok.len, p->tok.text, list);
+}
+
+static void read_block(struct parser *p)
+{
+    struct block b;
+    char buf[96];
+    int k = find_block(p);
+    memset(&b, 0, sizeof b);
+    b.kind = &block_kinds[k];
+    b.head = p->tok;
+    b.xf[0] = b.xf[5] = b.xf[10] = 1.0;
+    if (b.kind->unique) {
+        if (p->seen[k].line)
+            fail(p, &b.head, "second '%s' block (the first is at %d:%d)", b.kind->name,
+                 p->seen[k].line, p->seen[k].col);
+        p->seen[k] = b.head;
+    }
+    advance(p);
+    if (b.kind->named) {
+        if (p->tok.kind != TOK_WORD)
+            fail(p, &p->tok, "expected a name after '%s', found %s", b.kind->name,
+                 describe(&p->tok, buf));
+        b.name = p->tok;
+        advance(p);
+    }
+    if (p->tok.kind != TOK_LBRACE)
+        fail(p, &p->tok, "expected '{' after '%s%s%.*s', found %s", b.kind->name,
+             b.kind->named ? " " : "", (int)b.name.len, b.name.text, describe(&p->tok, buf));
+    advance(p);
+    while (p->tok.kind != TOK_RBRACE) {
+        if (p->tok.kind == TOK_EOF)
+            fail_unclosed(p, &b);
+        if (p->tok.kind != TOK_WORD)
+            fail(p, &p->tok, "expected a key or '}' in %s, found %s", b.kind->name,
+                 describe(&p->tok, buf));
+        read_key(p, &b);
+    }
+    b.kind->finish(p, &b);
+    advance(p);
+}
+
+static void NORETURN unknown_material(struct parser *p, const struct token *t)
+{
+    struct match m = matcher(t);
+    size_t i;
+    for (i = 1; i < p->s->material_count; i++)
+        consider(&m, p->s->materials[i].name);
+    if (m.best)
+        fail(p, t, "unknown material '%.*s' (did you mean '%s'?)", (int)t->len, t->text, m.best);
+    if (p->s->material_count <= 1)
+        fail(p, t, "unknown material '%.*s' (no material is defined)", (int)t->len, t->text);
+    fail(p, t, "unknown material '%.*s'", (int)t->len, t->text);
+}
+
+static void resolve_materials(struct parser *p)
+{
+    size_t i, j;
+    for (i = 0; i < p->nrefs; i++) {
+        const struct matref *r = &p->refs[i];
+        char name[sizeof p->s->materials[0].name];
+        int idx = -1;
+        if (r->name.len < sizeof name) {
+            memcpy(name, r->name.text, r->name.len);
+            name[r->name.len] = '\0';
+            idx = mc_scene_find_material(p->s, name);
+        }
+        if (idx < 0)
+            unknown_material(p, &r->name);
+        for (j = r->first; j < r->last; j++)
+            p->s->prims[j].material = idx;
+    }
+}
+
+static void read_scene(struct parser *p)
+{
+    int blocks = 0;
+    advance(p);
+    for (; p->tok.kind != TOK_EOF; blocks++)
+        read_block(p);
+    if (!blocks)
+        fail(p, &p->tok, "empty scene: a scene needs at least one block, such as 'sphere { }'");
+    resolve_materials(p);
+}
+
+/* The setjmp lives apart from mc_scene_parse so that the parser state it longjmps over belongs to
+ * the caller's frame, whose objects keep their values (C99 7.13.2.1). */
+static mcrt_status run(struct parser *p)
+{
+    if (setjmp(p->jump))
+        return p->status;
+    read_scene(p);
+    return MCRT_OK;
+}
+
+mcrt_status mc_scene_parse(struct scene *s, const char *text, size_t len, const char *name,
+                           const char *base_dir, mc_diag *d)
+{
+    struct parser p;
+    mcrt_status st;
+    if (!name)
+        name = "<string>";
+    if (!text)
+        text = "", len = 0;
+    if (len >= (size_t)1 << 30)
+        return mc_fail(d, MCRT_ERR_PARSE, "%s:1:1: scene text is larger than 1 GiB", name);
+    memset(&p, 0, sizeof p);
+    p.s = s;
+    p.name = name;
+    p.base_dir = base_dir;
+    p.d = d;
+    p.first_material = s->material_count;
+    mc_lex_init(&p.lx, text, len, name, d);
+    st = run(&p);
+    free(p.refs);
+    free(p.defs);
+    return st;
+}

@@ -1,0 +1,693 @@
+/* bench.c: BVH build and single-ray throughput on the Embree anchor scenes and ray sets, defined
+ * bit for bit in /work/shared/research/embree-anchor.md ("Definitions"), checked against its
+ * geometry hashes and hit statistics. Not a test: it prints a table.
+ *
+ *   bench [--scene sphere-1M|grid-city|spheres-16] [--quick]
+ */
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "core/rng.h"
+#include "geom/bvh.h"
+#include "geom/bvh_node.h"
+
+/* The definitions are normative in double precision with no FMA contraction. GCC in ISO C mode
+ * (-std=c99) already compiles with -ffp-contract=off and does not know this pragma; the geometry
+ * hashes below catch any compiler that contracts anyway. */
+#if !defined(__GNUC__) || defined(__clang__)
+#pragma STDC FP_CONTRACT OFF
+#endif
+
+#define PI 3.14159265358979323846
+#define RES 1024
+#define PIXELS (RES * RES)
+#define CHUNK 4096
+#define NO_HIT 0xFFFFFFFFu
+
+/* ---- Scenes (anchor "Definitions") ---- */
+
+struct mesh {
+    float *v;     /* 3 floats per vertex */
+    uint32_t *ix; /* 3 indices per triangle */
+    size_t nv, nt, cap_v, cap_t;
+};
+
+static void *xmalloc(size_t n)
+{
+    void *p = malloc(n ? n : 1);
+    if (!p) {
+        fprintf(stderr, "bench: out of memory (%zu bytes)\n", n);
+        exit(1);
+    }
+    return p;
+}
+
+static void mesh_alloc(struct mesh *m, size_t nv, size_t nt)
+{
+    m->v = xmalloc(nv * 3 * sizeof *m->v);
+    m->ix = xmalloc(nt * 3 * sizeof *m->ix);
+    m->nv = m->nt = 0;
+    m->cap_v = nv;
+    m->cap_t = nt;
+}
+
+static void add_vertex(struct mesh *m, double x, double y, double z)
+{
+    m->v[3 * m->nv + 0] = (float)x;
+    m->v[3 * m->nv + 1] = (float)y;
+    m->v[3 * m->nv + 2] = (float)z;
+    m->nv++;
+}
+
+static void add_triangle(struct mesh *m, uint32_t a, uint32_t b, uint32_t c)
+{
+    m->ix[3 * m->nt + 0] = a;
+    m->ix[3 * m->nt + 1] = b;
+    m->ix[3 * m->nt + 2] = c;
+    m->nt++;
+}
+
+/* Displaced UV sphere S(nphi, ntheta, scale, centre). */
+static void uv_sphere(struct mesh *m, int nphi, int ntheta, double scale, double cx, double cy,
+                      double cz)
+{
+    uint32_t base = (uint32_t)m->nv;
+    int i, j;
+    for (i = 0; i <= ntheta; i++)
+        for (j = 0; j < nphi; j++) {
+            double theta = PI * i / ntheta, phi = 2.0 * PI * j / nphi;
+            double r = 1.0 + 0.05 * sin(40.0 * theta) * sin(40.0 * phi);
+            double x = r * sin(theta) * cos(phi), y = r * cos(theta), z = r * sin(theta) * sin(phi);
+            add_vertex(m, cx + scale * x, cy + scale * y, cz + scale * z);
+        }
+    for (i = 0; i < ntheta; i++)
+        for (j = 0; j < nphi; j++) {
+            uint32_t a = base + (uint32_t)(i * nphi + j);
+            uint32_t b = base + (uint32_t)((i + 1) * nphi + j);
+            uint32_t c = base + (uint32_t)((i + 1) * nphi + (j + 1) % nphi);
+            uint32_t d = base + (uint32_t)(i * nphi + (j + 1) % nphi);
+            add_triangle(m, a, c, b);
+            add_triangle(m, a, d, c);
+        }
+}
+
+/* pcg_hash of Jarzynski and Olano 2020, "Hash Functions for GPU Rendering". */
+static uint32_t pcg_hash(uint32_t x)
+{
+    uint32_t s = x * 747796405u + 2891336453u;
+    uint32_t w = ((s >> ((s >> 28) + 4u)) ^ s) * 277803737u;
+    return (w >> 22) ^ w;
+}
+
+static void scene_sphere_1m(struct mesh *m)
+{
+    mesh_alloc(m, 501000, 1000000);
+    uv_sphere(m, 1000, 500, 1.0, 0.0, 0.0, 0.0);
+}
+
+static void scene_grid_city(struct mesh *m)
+{
+    static const uint8_t tri[12][3] = {{0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5},
+                                       {0, 1, 5}, {0, 5, 4}, {2, 6, 7}, {2, 7, 3},
+                                       {0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}};
+    int i, j, c, t;
+    mesh_alloc(m, 32772, 49154);
+    add_vertex(m, -2, -2, 0);
+    add_vertex(m, 2, -2, 0);
+    add_vertex(m, 2, 2, 0);
+    add_vertex(m, -2, 2, 0);
+    add_triangle(m, 0, 1, 2);
+    add_triangle(m, 0, 2, 3);
+    for (j = 0; j < 64; j++)
+        for (i = 0; i < 64; i++) {
+            uint32_t k = (uint32_t)(j * 64 + i), u = pcg_hash(k + 17u), base = 4u + 8u * k;
+            double h = 0.05 + 0.45 * ((u >> 8) / 16777216.0);
+            double x0 = -1.6 + 0.05 * (i + 0.1), x1 = -1.6 + 0.05 * (i + 0.9);
+            double y0 = -1.6 + 0.05 * (j + 0.1), y1 = -1.6 + 0.05 * (j + 0.9);
+            for (c = 0; c < 8; c++)
+                add_vertex(m, c & 1 ? x1 : x0, c & 2 ? y1 : y0, c & 4 ? h : 0.0);
+            for (t = 0; t < 12; t++)
+                add_triangle(m, base + tri[t][0], base + tri[t][1], base + tri[t][2]);
+        }
+}
+
+static void scene_spheres_16(struct mesh *m)
+{
+    int s;
+    mesh_alloc(m, 33792, 65536);
+    for (s = 0; s < 16; s++)
+        uv_sphere(m, 64, 32, 0.25, -0.825 + 0.55 * (s % 4), -0.825 + 0.55 * (s / 4), 0.0);
+}
+
+/* ---- Hashes and reference statistics ---- */
+
+static uint64_t fnv_word(uint64_t h, uint32_t w) { return (h ^ w) * 0x100000001b3ULL; }
+#define FNV_START 0xcbf29ce484222325ULL
+
+static uint64_t geometry_hash(const struct mesh *m)
+{
+    uint64_t h = FNV_START;
+    size_t i;
+    for (i = 0; i < 3 * m->nv; i++) {
+        uint32_t w;
+        memcpy(&w, &m->v[i], sizeof w);
+        h = fnv_word(h, w);
+    }
+    for (i = 0; i < 3 * m->nt; i++)
+        h = fnv_word(h, m->ix[i]);
+    return h;
+}
+
+enum set_kind { SET_PRIMARY, SET_DIFFUSE, SET_SHADOW, SET_COUNT };
+static const char *const set_names[SET_COUNT] = {"primary", "diffuse", "shadow"};
+
+/* Embree 3.13.5 HIGH, rtcIntersect1 / rtcOccluded1 (anchor "Hit statistics and checksums"). */
+struct reference {
+    size_t hits;
+    double sum_t;
+    uint64_t prim_hash, quad_hash;
+};
+
+struct scene_def {
+    const char *name;
+    void (*make)(struct mesh *m);
+    uint64_t geometry_hash;
+    struct reference ref[SET_COUNT];
+};
+
+static const struct scene_def scenes[] = {
+    {"sphere-1M", scene_sphere_1m, 0x55f037862e3dc131ULL,
+     {{655412, 1498667.121699, 0x3b249799f9d8cfb5ULL, 0x1a77013cb62f9680ULL},
+      {227100, 13953.789786, 0xa531bfc89c87a573ULL, 0xe0ff9b837e2d447eULL},
+      {398510, 0.0, 0x9a5eb856123aecc3ULL, 0}}},
+    {"grid-city", scene_grid_city, 0xff1733eb7e4fcf33ULL,
+     {{1048576, 2997843.423066, 0xc11653bbac3c21e6ULL, 0x4d04d0fdd69a7ecaULL},
+      {723847, 64473.606364, 0x69a7c78939ed5889ULL, 0x87a029885a15d089ULL},
+      {790066, 0.0, 0xc1b53f554947bfa1ULL, 0}}},
+    {"spheres-16", scene_spheres_16, 0xa776b77570594c45ULL,
+     {{586020, 1734070.500175, 0x60aacc3668f8f653ULL, 0x422ffd044e8a3556ULL},
+      {160200, 23135.564078, 0x1e7f469ef14594f0ULL, 0xbe9b81ca853a9005ULL},
+      {160404, 0.0, 0x93650deb758d8573ULL, 0}}},
+};
+#define SCENE_COUNT (sizeof scenes / sizeof scenes[0])
+
+/* ---- Ray sets ---- */
+
+/* A ray set: the rays that exist, each with the pixel it belongs to, and per-pixel results. */
+struct ray_set {
+    struct ray *rays;
+    uint32_t *pixel;
+    size_t count;
+    float *t;        /* per ray: hit distance (closest-hit sets) */
+    uint32_t *prim;  /* per ray: original triangle index or NO_HIT; shadow sets: 1 = occluded */
+};
+
+static void set_alloc(struct ray_set *s)
+{
+    s->rays = xmalloc(PIXELS * sizeof *s->rays);
+    s->pixel = xmalloc(PIXELS * sizeof *s->pixel);
+    s->t = xmalloc(PIXELS * sizeof *s->t);
+    s->prim = xmalloc(PIXELS * sizeof *s->prim);
+    s->count = 0;
+}
+
+static void set_free(struct ray_set *s)
+{
+    free(s->rays);
+    free(s->pixel);
+    free(s->t);
+    free(s->prim);
+}
+
+static void set_add(struct ray_set *s, uint32_t pixel, double ox, double oy, double oz, double dx,
+                    double dy, double dz, double tfar)
+{
+    struct ray *r = &s->rays[s->count];
+    r->o = v3((float)ox, (float)oy, (float)oz);
+    r->d = v3((float)dx, (float)dy, (float)dz);
+    r->tmax = (float)tfar;
+    s->pixel[s->count++] = pixel;
+}
+
+static void make_primary(struct ray_set *s)
+{
+    double t = tan(PI / 8);
+    int px, py;
+    for (py = 0; py < RES; py++)
+        for (px = 0; px < RES; px++) {
+            double u = (2 * (px + 0.5) / RES - 1) * t, v = (1 - 2 * (py + 0.5) / RES) * t;
+            double l = sqrt(u * u + v * v + 1);
+            set_add(s, (uint32_t)(py * RES + px), 0, 0, 3, u / l, v / l, -1 / l, INFINITY);
+        }
+}
+
+/* Diffuse and shadow rays from the primary hits (anchor, ray sets ii and iii). */
+static void make_secondary(const struct mesh *m, const struct ray_set *primary,
+                           struct ray_set *diffuse, struct ray_set *shadow)
+{
+    pcg32 g;
+    size_t i;
+    pcg32_seed(&g, 42, 54);
+    for (i = 0; i < primary->count; i++) {
+        const struct ray *r = &primary->rays[i];
+        double u1 = pcg32_next(&g) / 4294967296.0, u2 = pcg32_next(&g) / 4294967296.0;
+        double px, py, pz, e1[3], e2[3], nx, ny, nz, len, qx, qy, qz;
+        double rr, ph, lx, ly, lz, sg, a, b, tx, ty, tz, bx, by, bz, wx, wy, wz, dx, dy, dz, dist;
+        const float *v0, *v1, *v2;
+        int c;
+        if (primary->prim[i] == NO_HIT)
+            continue;
+        px = r->o.x + (double)primary->t[i] * r->d.x;
+        py = r->o.y + (double)primary->t[i] * r->d.y;
+        pz = r->o.z + (double)primary->t[i] * r->d.z;
+        v0 = &m->v[3 * m->ix[3 * primary->prim[i] + 0]];
+        v1 = &m->v[3 * m->ix[3 * primary->prim[i] + 1]];
+        v2 = &m->v[3 * m->ix[3 * primary->prim[i] + 2]];
+        for (c = 0; c < 3; c++) {
+            e1[c] = (double)v1[c] - v0[c];
+            e2[c] = (double)v2[c] - v0[c];
+        }
+        nx = e1[1] * e2[2] - e1[2] * e2[1];
+        ny = e1[2] * e2[0] - e1[0] * e2[2];
+        nz = e1[0] * e2[1] - e1[1] * e2[0];
+        len = sqrt(nx * nx + ny * ny + nz * nz);
+        nx = nx / len;
+        ny = ny / len;
+        nz = nz / len;
+        if (nx * r->d.x + ny * r->d.y + nz * r->d.z > 0) {
+            nx = -nx;
+            ny = -ny;
+            nz = -nz;
+        }
+        qx = px + 1e-4 * nx;
+        qy = py + 1e-4 * ny;
+        qz = pz + 1e-4 * nz;
+        rr = sqrt(u1);
+        ph = 2 * PI * u2;
+        lx = rr * cos(ph);
+        ly = rr * sin(ph);
+        lz = sqrt(fmax(0, 1 - u1));
+        sg = nz >= 0 ? 1 : -1;
+        a = -1 / (sg + nz);
+        b = nx * ny * a;
+        tx = 1 + sg * nx * nx * a;
+        ty = sg * b;
+        tz = -sg * nx;
+        bx = b;
+        by = sg + ny * ny * a;
+        bz = -ny;
+        wx = lx * tx + ly * bx + lz * nx;
+        wy = lx * ty + ly * by + lz * ny;
+        wz = lx * tz + ly * bz + lz * nz;
+        len = sqrt(wx * wx + wy * wy + wz * wz);
+        set_add(diffuse, primary->pixel[i], qx, qy, qz, wx / len, wy / len, wz / len, INFINITY);
+        dx = 2 - qx;
+        dy = 2 - qy;
+        dz = 2 - qz;
+        dist = sqrt(dx * dx + dy * dy + dz * dz);
+        set_add(shadow, primary->pixel[i], qx, qy, qz, dx / dist, dy / dist, dz / dist, dist);
+    }
+}
+
+/* ---- Tracing ---- */
+
+struct job {
+    const struct bvh *bvh;
+    const struct prim *prims;
+    struct ray_set *set;
+    int occlusion;
+    size_t passes, chunks;   /* work items: passes × chunks of CHUNK rays */
+    size_t next;             /* next work item, taken with an atomic add */
+};
+
+struct worker {
+    struct job *job;
+    double cpu;              /* this thread's CPU seconds */
+};
+
+static double clock_s(clockid_t id)
+{
+    struct timespec ts;
+    clock_gettime(id, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static void trace_range(struct job *j, size_t begin, size_t end)
+{
+    struct ray_set *s = j->set;
+    size_t i;
+    for (i = begin; i < end; i++) {
+        if (j->occlusion) {
+            s->prim[i] = (uint32_t)mc_bvh_occluded(j->bvh, j->prims, &s->rays[i]);
+        } else {
+            struct hit h;
+            if (mc_bvh_intersect(j->bvh, j->prims, &s->rays[i], &h)) {
+                s->t[i] = h.t;
+                /* The BVH reorders the primitives; material holds the original triangle index. */
+                s->prim[i] = (uint32_t)j->prims[h.prim].material;
+            } else {
+                s->prim[i] = NO_HIT;
+            }
+        }
+    }
+}
+
+static void *work(void *arg)
+{
+    struct worker *w = arg;
+    struct job *j = w->job;
+    double t0 = clock_s(CLOCK_THREAD_CPUTIME_ID);
+    for (;;) {
+        size_t item = __atomic_fetch_add(&j->next, 1, __ATOMIC_RELAXED), begin, end;
+        if (item >= j->passes * j->chunks)
+            break;
+        begin = (item % j->chunks) * CHUNK;
+        end = begin + CHUNK < j->set->count ? begin + CHUNK : j->set->count;
+        trace_range(j, begin, end);
+    }
+    w->cpu = clock_s(CLOCK_THREAD_CPUTIME_ID) - t0;
+    return NULL;
+}
+
+/* Trace the set `passes` times on `threads` threads (1 = the calling thread). Returns the total
+ * CPU seconds of the tracing threads; *wall gets the elapsed seconds. */
+static double run(struct job *j, int threads, size_t passes, double *wall)
+{
+    struct worker w[64];
+    pthread_t tid[64];
+    double t0 = clock_s(CLOCK_MONOTONIC), cpu = 0;
+    int i;
+    j->passes = passes;
+    j->chunks = (j->set->count + CHUNK - 1) / CHUNK;
+    j->next = 0;
+    for (i = 0; i < threads; i++)
+        w[i].job = j;
+    if (threads == 1) {
+        work(&w[0]);
+    } else {
+        for (i = 0; i < threads; i++)
+            if (pthread_create(&tid[i], NULL, work, &w[i]) != 0) {
+                fprintf(stderr, "bench: cannot create a thread\n");
+                exit(1);
+            }
+        for (i = 0; i < threads; i++)
+            pthread_join(tid[i], NULL);
+    }
+    *wall = clock_s(CLOCK_MONOTONIC) - t0;
+    for (i = 0; i < threads; i++)
+        cpu += w[i].cpu;
+    return cpu;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return v[n / 2];
+}
+
+struct timing {
+    double ns_per_ray;   /* CPU ns per ray, summed over the tracing threads */
+    double wall_mrays;   /* rays per wall-clock microsecond */
+};
+
+/* Anchor "How it was measured": a warm-up pass that also calibrates, then `reps` repetitions of
+ * K passes with K chosen so that a repetition lasts at least min_s; medians are reported. */
+static struct timing measure(struct job *j, int threads, int reps, double min_s)
+{
+    double cpu[8], wall_rate[8], wall, pass_s;
+    size_t passes;
+    int i;
+    struct timing t;
+    run(j, threads, 1, &pass_s);
+    passes = pass_s > 0 ? (size_t)(min_s / pass_s) + 1 : 1;
+    for (i = 0; i < reps; i++) {
+        cpu[i] = run(j, threads, passes, &wall) * 1e9 / (double)(passes * j->set->count);
+        wall_rate[i] = (double)(passes * j->set->count) / wall * 1e-6;
+    }
+    t.ns_per_ray = median(cpu, reps);
+    t.wall_mrays = median(wall_rate, reps);
+    return t;
+}
+
+/* ---- Statistics ---- */
+
+struct stats {
+    size_t hits;
+    double sum_t;
+    uint64_t prim_hash, quad_hash;
+};
+
+/* Anchor "Hit statistics and checksums": one word per pixel, in pixel order. */
+static struct stats statistics(const struct ray_set *s, int occlusion)
+{
+    uint32_t *word = xmalloc(PIXELS * sizeof *word);
+    struct stats st;
+    size_t i;
+    st.hits = 0;
+    st.sum_t = 0;
+    st.prim_hash = st.quad_hash = FNV_START;
+    for (i = 0; i < PIXELS; i++)
+        word[i] = occlusion ? 0 : NO_HIT;
+    for (i = 0; i < s->count; i++) {
+        word[s->pixel[i]] = s->prim[i];
+        if (occlusion ? s->prim[i] != 0 : s->prim[i] != NO_HIT) {
+            st.hits++;
+            if (!occlusion)
+                st.sum_t += s->t[i]; /* rays are in pixel order, so this is index order */
+        }
+    }
+    for (i = 0; i < PIXELS; i++) {
+        st.prim_hash = fnv_word(st.prim_hash, word[i]);
+        st.quad_hash = fnv_word(st.quad_hash, word[i] == NO_HIT || occlusion ? word[i] : word[i] >> 1);
+    }
+    free(word);
+    return st;
+}
+
+/* ---- Driver ---- */
+
+struct row {
+    const char *scene, *set;
+    size_t rays;
+    struct timing one, all;
+    struct stats st;
+    const struct reference *ref;
+};
+
+static void bvh_depth(const struct bvh *b, int *depth, double *avg_leaf)
+{
+    struct { uint32_t node; int depth; } stack[128];
+    int sp = 0;
+    size_t leaves = 0, prims = 0;
+    *depth = 0;
+    if (b->node_count == 0)
+        return;
+    stack[sp].node = 0;
+    stack[sp++].depth = 0;
+    while (sp > 0) {
+        const struct bvh_node *n = &b->nodes[stack[--sp].node];
+        int d = stack[sp].depth;
+        if (d > *depth)
+            *depth = d;
+        if (n->count) {
+            leaves++;
+            prims += n->count;
+            continue;
+        }
+        stack[sp].node = n->index;
+        stack[sp++].depth = d + 1;
+        stack[sp].node = n->index + 1;
+        stack[sp++].depth = d + 1;
+    }
+    *avg_leaf = (double)prims / (double)leaves;
+}
+
+static int bench_scene(const struct scene_def *sd, int threads, int quick, struct row *rows)
+{
+    struct mesh m;
+    struct prim *prims, *orig;
+    struct bvh b;
+    struct ray_set sets[SET_COUNT];
+    mc_diag d;
+    double build_wall[3], build_cpu[3];
+    int builds = quick ? 1 : 3, reps = quick ? 1 : 3, i, depth;
+    double min_s = quick ? 0.05 : 0.25, avg_leaf = 0;
+    uint64_t gh;
+    size_t k;
+
+    sd->make(&m);
+    gh = geometry_hash(&m);
+    if (gh != sd->geometry_hash) {
+        fprintf(stderr, "bench: %s: geometry hash %016llx, expected %016llx\n", sd->name,
+                (unsigned long long)gh, (unsigned long long)sd->geometry_hash);
+        return 0;
+    }
+    orig = xmalloc(m.nt * sizeof *orig);
+    prims = xmalloc(m.nt * sizeof *prims);
+    memset(orig, 0, m.nt * sizeof *orig);
+    for (k = 0; k < m.nt; k++) {
+        int c;
+        orig[k].kind = PRIM_TRIANGLE;
+        orig[k].material = (int32_t)k;
+        orig[k].light = -1;
+        orig[k].normals = -1;
+        for (c = 0; c < 3; c++) {
+            const float *v = &m.v[3 * m.ix[3 * k + (size_t)c]];
+            orig[k].p[c] = v3(v[0], v[1], v[2]);
+        }
+    }
+    for (i = 0; i < builds; i++) {
+        double w0, c0;
+        memcpy(prims, orig, m.nt * sizeof *prims);
+        if (i > 0)
+            mc_bvh_free(&b);
+        w0 = clock_s(CLOCK_MONOTONIC);
+        c0 = clock_s(CLOCK_PROCESS_CPUTIME_ID);
+        if (mc_bvh_build(&b, prims, m.nt, &d) != MCRT_OK) {
+            fprintf(stderr, "bench: %s: %s\n", sd->name, d.msg);
+            return 0;
+        }
+        build_cpu[i] = (clock_s(CLOCK_PROCESS_CPUTIME_ID) - c0) * 1e3;
+        build_wall[i] = (clock_s(CLOCK_MONOTONIC) - w0) * 1e3;
+    }
+    free(orig);
+    bvh_depth(&b, &depth, &avg_leaf);
+    {
+        double cpu = median(build_cpu, builds), wall = median(build_wall, builds);
+        printf("%-11s %9zu %9zu %5d %8.2f %10.1f %9.1f %9.1f %9.0f\n", sd->name, m.nt,
+               b.node_count, depth, avg_leaf,
+               (double)(b.node_count * sizeof(struct bvh_node) + m.nt * sizeof(struct prim)) /
+                   (double)m.nt,
+               wall, cpu, cpu * 1e6 / (double)m.nt);
+        fflush(stdout);
+    }
+
+    for (i = 0; i < SET_COUNT; i++)
+        set_alloc(&sets[i]);
+    make_primary(&sets[SET_PRIMARY]);
+    for (i = 0; i < SET_COUNT; i++) {
+        struct job j;
+        struct row *r = &rows[i];
+        double wall;
+        if (i == SET_DIFFUSE)
+            make_secondary(&m, &sets[SET_PRIMARY], &sets[SET_DIFFUSE], &sets[SET_SHADOW]);
+        j.bvh = &b;
+        j.prims = prims;
+        j.set = &sets[i];
+        j.occlusion = i == SET_SHADOW;
+        run(&j, 1, 1, &wall); /* the results the statistics and the next sets are made from */
+        r->scene = sd->name;
+        r->set = set_names[i];
+        r->rays = sets[i].count;
+        r->st = statistics(&sets[i], j.occlusion);
+        r->ref = &sd->ref[i];
+        r->one = measure(&j, 1, reps, min_s);
+        r->all = measure(&j, threads, reps, min_s);
+    }
+    for (i = 0; i < SET_COUNT; i++)
+        set_free(&sets[i]);
+    mc_bvh_free(&b);
+    free(prims);
+    free(m.v);
+    free(m.ix);
+    return 1;
+}
+
+static int self_check(void)
+{
+    pcg32 g;
+    uint32_t a, b, c;
+    pcg32_seed(&g, 42, 54);
+    a = pcg32_next(&g);
+    b = pcg32_next(&g);
+    c = pcg32_next(&g);
+    if (a != 0xa15c02b7u || b != 0x7b47f409u || c != 0xba1d3330u) {
+        fprintf(stderr, "bench: PCG32 first outputs %08x %08x %08x, expected a15c02b7 7b47f409 "
+                "ba1d3330\n", a, b, c);
+        return 0;
+    }
+    return 1;
+}
+
+int main(int argc, char **argv)
+{
+    struct row rows[SCENE_COUNT * SET_COUNT];
+    const char *only = NULL;
+    int quick = 0, threads, i, nrows = 0, ok = 1;
+    long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
+    size_t s;
+
+    for (i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--quick") == 0) {
+            quick = 1;
+        } else if (strcmp(argv[i], "--scene") == 0 && i + 1 < argc) {
+            only = argv[++i];
+        } else {
+            fprintf(stderr, "usage: bench [--scene sphere-1M|grid-city|spheres-16] [--quick]\n");
+            return 2;
+        }
+    }
+    if (!self_check())
+        return 1;
+    threads = ncpu < 1 ? 1 : ncpu > 64 ? 64 : (int)ncpu;
+    printf("mcrt BVH benchmark: binary BVH, %zu-byte nodes, %zu-byte primitives, single rays; "
+           "%d threads; %s\n", sizeof(struct bvh_node), sizeof(struct prim), threads,
+           quick ? "quick (1 repetition of >= 0.05 s)" : "medians of 3 repetitions of >= 0.25 s");
+    printf("geometry hashes and PCG32 first outputs verified against the anchor definitions\n\n");
+    printf("%-11s %9s %9s %5s %8s %10s %9s %9s %9s\n", "build", "triangles", "nodes", "depth",
+           "avg leaf", "bytes/tri", "wall ms", "CPU ms", "CPU ns/tri");
+    for (s = 0; s < SCENE_COUNT; s++) {
+        if (only && strcmp(only, scenes[s].name) != 0)
+            continue;
+        if (!bench_scene(&scenes[s], threads, quick, &rows[nrows]))
+            return 1;
+        nrows += SET_COUNT;
+    }
+    if (nrows == 0) {
+        fprintf(stderr, "bench: no scene named '%s'\n", only);
+        return 2;
+    }
+
+    printf("\n%-11s %-8s %9s | %-20s | %-20s %10s\n", "trace", "set", "rays", "1 thread",
+           "all threads", "");
+    printf("%-11s %-8s %9s | %9s %10s | %9s %10s %10s\n", "", "", "", "Mrays/s/c", "CPU ns/ray",
+           "Mrays/s/c", "CPU ns/ray", "wall Mr/s");
+    for (i = 0; i < nrows; i++) {
+        const struct row *r = &rows[i];
+        printf("%-11s %-8s %9zu | %9.2f %10.1f | %9.2f %10.1f %10.2f\n", r->scene, r->set, r->rays,
+               1e3 / r->one.ns_per_ray, r->one.ns_per_ray, 1e3 / r->all.ns_per_ray,
+               r->all.ns_per_ray, r->all.wall_mrays);
+    }
+
+    /* Acceptance (anchor "How to compare another renderer"): hit count within 0.02% of the rays,
+     * sum_t within 1e-6 relative. Hashes match only if every tie resolves as in Embree. */
+    printf("\n%-11s %-8s %9s %9s %8s %16s %16s %9s %-9s %-9s %s\n", "check", "set", "hits",
+           "ref", "diff %", "sum_t", "ref", "rel", "prim hash", "quad hash", "verdict");
+    for (i = 0; i < nrows; i++) {
+        const struct row *r = &rows[i];
+        int occl = strcmp(r->set, "shadow") == 0;
+        double dh = 100.0 * ((double)r->st.hits - (double)r->ref->hits) / (double)r->rays;
+        double rel = occl ? 0 : fabs(r->st.sum_t - r->ref->sum_t) / r->ref->sum_t;
+        int good = fabs(dh) <= 0.02 && rel <= 1e-6;
+        ok &= good;
+        printf("%-11s %-8s %9zu %9zu %+8.4f", r->scene, r->set, r->st.hits, r->ref->hits, dh);
+        if (occl)
+            printf(" %16s %16s %9s", "-", "-", "-");
+        else
+            printf(" %16.6f %16.6f %9.2e", r->st.sum_t, r->ref->sum_t, rel);
+        printf(" %-9s %-9s %s\n", r->st.prim_hash == r->ref->prim_hash ? "same" : "differs",
+               occl ? "-" : r->st.quad_hash == r->ref->quad_hash ? "same" : "differs",
+               good ? "ok" : "OUT OF TOLERANCE");
+    }
+    return ok ? 0 : 1;
+}
