@@ -107,7 +107,7 @@ run: setup
 
 test: setup
 	@$(MAKE) --no-print-directory test-build
-	@O=$(O) sh tests/run.sh
+	@O=$(O) CC="$(CC)" LDFLAGS="$(LDFLAGS)" sh tests/run.sh
 
 test-build: all $(UNIT_BIN) $(TOOL_BIN)
 
@@ -129,7 +129,7 @@ install: all
 	install -m 644 man/libmcrt.3 $(DESTDIR)$(PREFIX)/share/man/man3/libmcrt.3
 	install -m 644 man/mcrt.5 $(DESTDIR)$(PREFIX)/share/man/man5/mcrt.5
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(shell sed -n 's/^#define MCRT_VERSION "\(.*\)"/\1/p' src/mcrt.h)|' \
-	  -e 's|@LIBS_PRIVATE@|$(strip $(LDLIBS))|' -e 's|@REQUIRES_PRIVATE@|$(strip $(if $(HAVE_PNG),libpng) $(if $(HAVE_EXR),OpenEXR))|' \
+	  -e 's|@LIBS_PRIVATE@|$(strip $(LDLIBS))|' \
 	  src/mcrt.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/mcrt.pc
 
 uninstall:

@@ -13,8 +13,8 @@
  *     const float *rgb = mcrt_render_pixels(r, &w, &h);
  *     mcrt_render_free(r); mcrt_scene_free(s);
  *
- * Ownership: pointers returned by mcrt_* are borrowed and stay valid until the handle they came
- * from is freed. *_free(NULL) is a no-op. Handles may be used from any thread, one call at a time,
+ * Ownership: pointers returned by mcrt_* are borrowed from the handle they came from and stay
+ * valid until the next call that changes that handle (a load, a run) or until it is freed. *_free(NULL) is a no-op. Handles may be used from any thread, one call at a time,
  * except mcrt_render_cancel, which may be called from any thread during mcrt_render_run.
  */
 #ifndef MCRT_H
@@ -87,7 +87,8 @@ mcrt_render *mcrt_render_new(const mcrt_scene *s, const mcrt_options *o);
 mcrt_status mcrt_render_run(mcrt_render *r);
 /* Ask a running render to stop soon. Safe from any thread and from signal handlers. */
 void mcrt_render_cancel(mcrt_render *r);
-/* Linear RGB radiance, 3 floats per pixel, rows top to bottom. Borrowed; NULL before a run. */
+/* Linear RGB radiance, 3 floats per pixel, rows top to bottom. Borrowed until the next run or
+ * mcrt_render_free; NULL before a run. */
 const float *mcrt_render_pixels(const mcrt_render *r, int *width, int *height);
 /* Write the image; the format is chosen by the suffix: .png (8-bit sRGB), .exr (float), .pfm.
  * The file is written to a temporary name in the same folder and renamed when complete, so an

@@ -6,6 +6,8 @@
 # Prints "ok ..." or "FAIL ..." per check, then "N passed, N failed".
 O=${O:-build}
 CC=${CC:-cc}
+# The build's own link flags (make check links the library with the sanitizers).
+LDFLAGS=${LDFLAGS:-}
 PKG_CONFIG=${PKG_CONFIG:-pkg-config}
 passed=0
 failed=0
@@ -94,7 +96,7 @@ if [ ! -s "$tmp/embed.c" ]; then
     finish
 fi
 # shellcheck disable=SC2086 # $flags is a list of compiler arguments
-if $CC -std=c99 -Wall -Wextra -Wpedantic -Werror -o "$tmp/embed" "$tmp/embed.c" $flags >"$tmp/cc" 2>&1; then
+if $CC -std=c99 -Wall -Wextra -Wpedantic -Werror -o "$tmp/embed" "$tmp/embed.c" $flags $LDFLAGS >"$tmp/cc" 2>&1; then
     ok "README example builds against the installed files (-std=c99 -Wall -Wextra -Wpedantic -Werror)"
 else
     fail "README example does not build:"

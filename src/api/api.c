@@ -97,7 +97,7 @@ mcrt_status mcrt_scene_load_file(mcrt_scene *s, const char *path)
         return MCRT_ERR_INVALID;
     if (!path)
         return mc_fail(&s->err, MCRT_ERR_INVALID, "mcrt_scene_load_file: path is NULL");
-    st = mc_read_file(path, MAX_SCENE_BYTES, &text, &len, &s->err);
+    st = mc_read_file(path, MAX_SCENE_BYTES, NULL, &text, &len, &s->err);
     if (st != MCRT_OK)
         return st;
     dir = malloc(strlen(path) + 2);

@@ -30,8 +30,21 @@ float mc_ggx_g2(float alpha, vec3 wo, vec3 wi);
  * distribution's density D_wo(wm) = G1(wo) max(0, wo·wm) D(wm) / wo.z. */
 vec3 mc_ggx_sample_visible(float alpha, vec3 wo, vec2 u);
 float mc_ggx_visible_pdf(float alpha, vec3 wo, vec3 wm);
+/* Reflection from wo to wi, both with z > 0, off the microfacet wm = the half vector:
+ * mc_ggx_half gives wm and wo·wm = wi·wm (formed symmetrically in wo and wi, for Fresnel);
+ * mc_ggx_reflection f without the Fresnel factor, D(wm) G2 / (4 cosθo cosθi), and that cosine;
+ * mc_ggx_reflection_pdf the pdf of wi when wm is sampled from the visible normals of wo. */
+float mc_ggx_half(vec3 wo, vec3 wi, vec3 *wm);
+float mc_ggx_reflection(float alpha, vec3 wo, vec3 wi, float *cos_h);
+float mc_ggx_reflection_pdf(float alpha, vec3 wo, vec3 wi);
 
 /* ---- materials ---- */
+
+/* Opaque materials scatter alike from both faces: a back-face configuration is mirrored to the
+ * front (mc_mirror_z flips a direction through the tangent plane), computed there, and mirrored
+ * back. */
+static inline vec3 mc_mirror_z(vec3 w) { return v3(w.x, w.y, -w.z); }
+static inline vec3 mc_front(vec3 w) { return v3(w.x, w.y, fabsf(w.z)); }
 
 /* Lambertian (diffuse.c): f = albedo/π on wo's side of the surface, 0 across it. */
 vec3 mc_diffuse_eval(const struct bsdf *b, vec3 wo, vec3 wi);

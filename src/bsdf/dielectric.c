@@ -17,26 +17,30 @@ static float orient(const struct bsdf *b, vec3 *wo, vec3 *wi)
     return 1.0f / b->ior;
 }
 
-/* The microfacet normal that scatters wo (z > 0) into wi: the half vector wo + wi for
- * reflection, the generalised half vector wo + η wi for refraction (Walter 2007 eq. 13 and 16),
- * turned to face z > 0. Returns 0 when no microfacet can: wi in the tangent plane, or a normal
- * facing away from wo or, for refraction, not between wo and wi (light must enter the facet's
- * front and leave through its back). */
-static int half_vector(vec3 wo, vec3 wi, float eta, vec3 *wm)
+/* The microfacet normal that refracts wo (z > 0) into wi (z < 0): the generalised half vector
+ * wo + η wi (Walter 2007 eq. 16), turned to face z > 0. Returns 0 when no microfacet can: a
+ * normal facing away from wo, or not between wo and wi (light enters a facet's front and
+ * leaves through its back). */
+static int refraction_normal(vec3 wo, vec3 wi, float eta, vec3 *wm)
 {
-    vec3 h;
-    if (wi.z == 0.0f)
-        return 0;
-    h = wi.z > 0.0f ? v3_add(wo, wi) : v3_add(wo, v3_scale(wi, eta));
+    vec3 h = v3_madd(wo, wi, eta);
     if (v3_length2(h) == 0.0f)
         return 0;
     h = v3_normalize(h);
     if (h.z < 0.0f)
         h = v3_neg(h);
-    if (!(v3_dot(wo, h) > 0.0f && v3_dot(wi, h) * wi.z > 0.0f))
+    if (!(v3_dot(wo, h) > 0.0f && v3_dot(wi, h) < 0.0f))
         return 0;
     *wm = h;
     return 1;
+}
+
+/* 1 − F at wm for the refraction from wo (z > 0) to wi. 1 − F is the same seen from either
+ * side, so it is taken from the outside, whichever side wo is on: from the denser side, near
+ * the critical angle, η cosθt = √(cos²θ − cos²θc) keeps none of cosθ's digits. */
+static float refraction_transmittance(const struct bsdf *b, vec3 wo, vec3 wi, vec3 wm, float eta)
+{
+    return 1.0f - mc_fresnel_dielectric(eta == b->ior ? v3_dot(wo, wm) : -v3_dot(wi, wm), b->ior);
 }
 
 /* dωm/dωi of refraction through wm (Walter 2007 eq. 17): η² |wi·wm| / (wo·wm + η wi·wm)². */
@@ -49,74 +53,74 @@ static float refraction_jacobian(vec3 wo, vec3 wi, vec3 wm, float eta)
 vec3 mc_dielectric_eval(const struct bsdf *b, vec3 wo, vec3 wi)
 {
     vec3 wm;
-    float eta, f, dg;
-    if (wo.z == 0.0f)
+    float eta, c, f;
+    if (wo.z == 0.0f || wi.z == 0.0f)
         return v3s(0.0f);
     eta = orient(b, &wo, &wi);
-    if (!half_vector(wo, wi, eta, &wm))
+    if (wi.z > 0.0f) {
+        /* Reflection, untinted as smooth glass. */
+        f = mc_ggx_reflection(b->alpha, wo, wi, &c);
+        return v3s(mc_fresnel_dielectric(c, eta) * f);
+    }
+    if (!refraction_normal(wo, wi, eta, &wm))
         return v3s(0.0f);
-    f = mc_fresnel_dielectric(v3_dot(wo, wm), eta);
-    /* Height-correlated G2 for refraction too, as pbrt-v4 does (Heitz 2014 §6.2 gives the exact
-     * height-correlated form for transmission as a Beta function of Λ; not used here). */
-    dg = mc_ggx_d(b->alpha, wm) * mc_ggx_g2(b->alpha, wo, wi);
-    if (wi.z > 0.0f)
-        return v3s(f * dg / (4.0f * wo.z * wi.z)); /* reflection, untinted as smooth glass */
     /* Walter 2007 eq. 21: f = |wi·wm| |wo·wm| η_wo² (1 − F) D G2 / (|cosθi| cosθo (η_wo wo·wm +
      * η_wi wi·wm)²). With η_wo = 1 this is the Jacobian above over η², i.e. the radiance-mode BTDF
-     * (the 1/η² of specular.c) times the tint. */
-    return v3_scale(b->color, (1.0f - f) * dg * v3_dot(wo, wm) * refraction_jacobian(wo, wi, wm, eta) /
-                                  (eta * eta * wo.z * fabsf(wi.z)));
+     * (the 1/η² of specular.c), here times the tint. G2 is the height-correlated form of
+     * reflection, as in pbrt-v4 (Heitz 2014 §6.2's exact height-correlated form for
+     * transmission is a Beta function of the Λs; not used here). */
+    f = refraction_transmittance(b, wo, wi, wm, eta) * mc_ggx_d(b->alpha, wm) * mc_ggx_g2(b->alpha, wo, wi) *
+        v3_dot(wo, wm) * refraction_jacobian(wo, wi, wm, eta) / (eta * eta * wo.z * -wi.z);
+    return v3_scale(b->color, f);
 }
 
 float mc_dielectric_pdf(const struct bsdf *b, vec3 wo, vec3 wi)
 {
     vec3 wm;
-    float eta, f, pm;
-    if (wo.z == 0.0f)
+    float eta;
+    if (wo.z == 0.0f || wi.z == 0.0f)
         return 0.0f;
     eta = orient(b, &wo, &wi);
-    if (!half_vector(wo, wi, eta, &wm))
-        return 0.0f;
-    /* Visible normal density, the lobe's probability (F or 1 − F: mc_dielectric_sample) and
-     * the lobe's Jacobian. */
-    f = mc_fresnel_dielectric(v3_dot(wo, wm), eta);
-    pm = mc_ggx_visible_pdf(b->alpha, wo, wm);
+    /* The visible normal's density, times the probability of the lobe (F or 1 − F:
+     * mc_dielectric_sample), through the lobe's Jacobian. */
     if (wi.z > 0.0f)
-        return f * pm / (4.0f * v3_dot(wo, wm));
-    return (1.0f - f) * pm * refraction_jacobian(wo, wi, wm, eta);
+        return mc_fresnel_dielectric(mc_ggx_half(wo, wi, &wm), eta) * mc_ggx_reflection_pdf(b->alpha, wo, wi);
+    if (!refraction_normal(wo, wi, eta, &wm))
+        return 0.0f;
+    return refraction_transmittance(b, wo, wi, wm, eta) * mc_ggx_visible_pdf(b->alpha, wo, wm) *
+           refraction_jacobian(wo, wi, wm, eta);
 }
 
 int mc_dielectric_sample(const struct bsdf *b, vec3 wo, float uc, vec2 u, struct bsdf_sample *out)
 {
     vec3 w = wo, wm, wi = v3s(0.0f);
-    float eta, f, pm;
+    float eta, f;
     if (wo.z == 0.0f)
         return 0;
     eta = orient(b, &w, &wi); /* wi is not known yet: flipping its zero is harmless */
     wm = mc_ggx_sample_visible(b->alpha, w, u);
     f = mc_fresnel_dielectric(v3_dot(w, wm), eta);
-    pm = mc_ggx_visible_pdf(b->alpha, w, wm);
     if (uc < f) {
-        /* Reflection with probability F: weight f cosθi / (F D_wo / (4 wo·wm)) = G2/G1(wo). */
+        /* Reflection, with probability F: weight f cosθi / (F D_wo / (4 wo·wm)) = G2/G1(wo). */
         wi = mc_reflect(w, wm);
         if (wi.z <= 0.0f)
             return 0;
-        out->pdf = f * pm / (4.0f * v3_dot(w, wm));
         out->weight = v3s(1.0f);
         out->eta = 1.0f;
     } else {
-        /* Refraction with probability 1 − F (F < 1: no total internal reflection at wm):
-         * weight tint · G2/G1(wo) / η², the (1 − F), D and Jacobian cancelling. */
+        /* Refraction, with probability 1 − F (< 1: no total internal reflection at wm): weight
+         * tint · G2/G1(wo) / η², the 1 − F, D and Jacobian cancelling likewise. */
         if (!mc_refract(w, wm, eta, &wi) || wi.z >= 0.0f)
             return 0;
-        out->pdf = (1.0f - f) * pm * refraction_jacobian(w, wi, wm, eta);
         out->weight = v3_scale(b->color, 1.0f / (eta * eta));
         out->eta = eta;
     }
-    if (!(out->pdf > 0.0f))
-        return 0;
     out->weight = v3_scale(out->weight, mc_ggx_g2(b->alpha, w, wi) / mc_ggx_g1(b->alpha, w));
-    out->wi = wo.z > 0.0f ? wi : v3(wi.x, wi.y, -wi.z);
+    out->wi = wo.z > 0.0f ? wi : mc_mirror_z(wi);
+    /* The pdf of wi as mc_dielectric_pdf computes it, from the normal recomputed from wo and
+     * wi: the value light sampling's MIS weights use too; a wi that rounding left no microfacet
+     * to produce is dropped. */
+    out->pdf = mc_dielectric_pdf(b, wo, out->wi);
     out->delta = 0;
-    return 1;
+    return out->pdf > 0.0f;
 }

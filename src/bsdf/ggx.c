@@ -70,3 +70,27 @@ vec3 mc_ggx_sample_visible(float alpha, vec3 wo, vec2 u)
      * would be a normal of zero density. */
     return v3_normalize(v3(alpha * nh.x, alpha * nh.y, fmaxf(1e-6f, nh.z)));
 }
+
+float mc_ggx_half(vec3 wo, vec3 wi, vec3 *wm)
+{
+    /* wo·wm = wi·wm in exact arithmetic; their mean is the same float whichever direction comes
+     * first, which makes every reflection f built on it exactly reciprocal. */
+    *wm = v3_normalize(v3_add(wo, wi)); /* nonzero: both are above the surface */
+    return 0.5f * (v3_dot(wo, *wm) + v3_dot(wi, *wm));
+}
+
+float mc_ggx_reflection(float alpha, vec3 wo, vec3 wi, float *cos_h)
+{
+    /* Torrance–Sparrow (Walter 2007 eq. 20) without its Fresnel factor. */
+    vec3 wm;
+    *cos_h = mc_ggx_half(wo, wi, &wm);
+    return mc_ggx_d(alpha, wm) * mc_ggx_g2(alpha, wo, wi) / (4.0f * wo.z * wi.z);
+}
+
+float mc_ggx_reflection_pdf(float alpha, vec3 wo, vec3 wi)
+{
+    /* The visible normal's density through the reflection Jacobian dωm/dωi = 1/(4 wo·wm)
+     * (Walter 2007 eq. 14). */
+    vec3 wm = v3_normalize(v3_add(wo, wi));
+    return mc_ggx_visible_pdf(alpha, wo, wm) / (4.0f * v3_dot(wo, wm));
+}

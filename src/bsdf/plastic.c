@@ -29,8 +29,6 @@
  * directional albedo below 1. */
 #define MAX_BASE_ALBEDO 0.999f
 
-static vec3 front(vec3 w) { return v3(w.x, w.y, fabsf(w.z)); }
-
 /* A for base albedo rho: the geometric series of bounces between base and coat (above). */
 static float bounce_albedo(float rho, double fdr_in)
 {
@@ -66,29 +64,19 @@ static float coat_probability(const struct bsdf *b, float cos_o)
     return s > 0.0f ? f / s : 0.0f;
 }
 
-/* The rough coat's f and its pdf from visible-normal sampling, for wo, wi on the front. */
-static float coat_eval(const struct bsdf *b, vec3 wo, vec3 wi)
-{
-    vec3 wm = v3_normalize(v3_add(wo, wi));
-    return mc_fresnel_dielectric(v3_dot(wo, wm), b->ior) * mc_ggx_d(b->alpha, wm) *
-           mc_ggx_g2(b->alpha, wo, wi) / (4.0f * wo.z * wi.z);
-}
-static float coat_pdf(const struct bsdf *b, vec3 wo, vec3 wi)
-{
-    vec3 wm = v3_normalize(v3_add(wo, wi));
-    return mc_ggx_visible_pdf(b->alpha, wo, wm) / (4.0f * v3_dot(wo, wm));
-}
-
 vec3 mc_plastic_eval(const struct bsdf *b, vec3 wo, vec3 wi)
 {
     vec3 f;
     if (!(wo.z * wi.z > 0.0f))
         return v3s(0.0f);
-    wo = front(wo);
-    wi = front(wi);
+    wo = mc_front(wo);
+    wi = mc_front(wi);
     f = diffuse(b, wo, wi);
-    /* The smooth coat is a delta lobe: not part of eval (bsdf.h). */
-    return b->alpha > 0.0f ? v3_add(f, v3s(coat_eval(b, wo, wi))) : f;
+    if (b->alpha > 0.0f) { /* the smooth coat is a delta lobe: not part of eval (bsdf.h) */
+        float c, coat = mc_ggx_reflection(b->alpha, wo, wi, &c);
+        f = v3_add(f, v3s(mc_fresnel_dielectric(c, b->ior) * coat));
+    }
+    return f;
 }
 
 float mc_plastic_pdf(const struct bsdf *b, vec3 wo, vec3 wi)
@@ -96,25 +84,23 @@ float mc_plastic_pdf(const struct bsdf *b, vec3 wo, vec3 wi)
     float pc, pdf;
     if (!(wo.z * wi.z > 0.0f))
         return 0.0f;
-    wo = front(wo);
-    wi = front(wi);
+    wo = mc_front(wo);
+    wi = mc_front(wi);
     pc = coat_probability(b, wo.z);
     pdf = (1.0f - pc) * mc_warp_cosine_hemisphere_pdf(wi.z);
-    return b->alpha > 0.0f ? pdf + pc * coat_pdf(b, wo, wi) : pdf;
+    return b->alpha > 0.0f ? pdf + pc * mc_ggx_reflection_pdf(b->alpha, wo, wi) : pdf;
 }
 
 int mc_plastic_sample(const struct bsdf *b, vec3 wo, float uc, vec2 u, struct bsdf_sample *out)
 {
-    vec3 w = front(wo), wi;
+    vec3 w = mc_front(wo), wi;
     float pc, pdf;
     if (wo.z == 0.0f)
         return 0;
     pc = coat_probability(b, w.z);
-    if (uc < pc && b->alpha == 0.0f) {
-        /* The smooth coat's delta reflection, chosen with probability pc: weight F/pc. */
-        return mc_specular_reflection(wo, v3s(mc_fresnel_dielectric(w.z, b->ior) / pc), pc, out);
-    }
     if (uc < pc) {
+        if (b->alpha == 0.0f) /* the smooth coat's delta reflection, chosen with probability pc */
+            return mc_specular_reflection(wo, v3s(mc_fresnel_dielectric(w.z, b->ior) / pc), pc, out);
         wi = mc_reflect(w, mc_ggx_sample_visible(b->alpha, w, u));
         if (wi.z <= 0.0f)
             return 0;
@@ -128,7 +114,7 @@ int mc_plastic_sample(const struct bsdf *b, vec3 wo, float uc, vec2 u, struct bs
     pdf = mc_plastic_pdf(b, w, wi);
     if (!(pdf > 0.0f))
         return 0;
-    out->wi = wo.z > 0.0f ? wi : v3(wi.x, wi.y, -wi.z);
+    out->wi = wo.z > 0.0f ? wi : mc_mirror_z(wi);
     out->pdf = pdf;
     out->weight = v3_scale(mc_plastic_eval(b, w, wi), wi.z / pdf);
     out->delta = 0;

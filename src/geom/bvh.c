@@ -41,13 +41,15 @@ static struct box box_empty(void)
     return b;
 }
 
-static void box_grow(struct box *b, const float *lo, const float *hi)
+/* Written out: -O2 does not unroll the loop, and this is the build's innermost operation. */
+static inline void box_grow(struct box *b, const float *lo, const float *hi)
 {
-    int a;
-    for (a = 0; a < 3; a++) {
-        b->lo[a] = min2(b->lo[a], lo[a]);
-        b->hi[a] = max2(b->hi[a], hi[a]);
-    }
+    b->lo[0] = min2(b->lo[0], lo[0]);
+    b->lo[1] = min2(b->lo[1], lo[1]);
+    b->lo[2] = min2(b->lo[2], lo[2]);
+    b->hi[0] = max2(b->hi[0], hi[0]);
+    b->hi[1] = max2(b->hi[1], hi[1]);
+    b->hi[2] = max2(b->hi[2], hi[2]);
 }
 
 /* Half the surface area; 0 for an empty box. */
@@ -79,19 +81,27 @@ struct split {
     struct box left, right; /* bounds of the two sides */
 };
 
-/* Bin of a centroid coordinate. The float test clamps both the top edge and NaN (from a primitive
- * with non-finite bounds) into the last bin, so the conversion to int is always defined. */
-static int bin_of(float c, float lo, float scale)
+/* Bins for a node of n primitives: BINS, but no more than n for small nodes, where the fixed
+ * cost of sweeping the bins would otherwise dominate the build. */
+static int bin_count(const struct task *t)
 {
-    float f = (c - lo) * scale;
-    return f < (float)(BINS - 1) ? (int)f : BINS - 1;
+    uint32_t n = t->end - t->begin;
+    return n < BINS ? (int)n : BINS;
 }
 
-static float bin_scale(const struct box *cbox, int axis)
+/* Bin of a centroid coordinate. The float test clamps both the top edge and NaN (from a primitive
+ * with non-finite bounds) into the last bin, so the conversion to int is always defined. */
+static int bin_of(float c, float lo, float scale, int nbins)
+{
+    float f = (c - lo) * scale;
+    return f < (float)(nbins - 1) ? (int)f : nbins - 1;
+}
+
+static float bin_scale(const struct box *cbox, int axis, int nbins)
 {
     float ext = cbox->hi[axis] - cbox->lo[axis];
-    /* Slightly less than BINS/ext so the largest centroid maps into the last bin, not past it. */
-    return ext > 0.0f ? (float)BINS * 0.99999f / ext : 0.0f;
+    /* Slightly less than nbins/ext so the largest centroid maps into the last bin, not past it. */
+    return ext > 0.0f ? (float)nbins * 0.99999f / ext : 0.0f;
 }
 
 /* The cheapest bin boundary over all three axes; returns 0 when no boundary separates anything
@@ -101,39 +111,42 @@ static int find_split(const struct ref *refs, const struct task *t, struct split
     struct box bins[3][BINS];
     uint32_t cnt[3][BINS];
     float scale[3];
-    int axis, i, found = 0;
+    int axis, i, nbins = bin_count(t), found = 0;
     uint32_t k;
 
     for (axis = 0; axis < 3; axis++) {
-        scale[axis] = bin_scale(&t->cbox, axis);
-        for (i = 0; i < BINS; i++) {
+        scale[axis] = bin_scale(&t->cbox, axis, nbins);
+        for (i = 0; i < nbins; i++) {
             bins[axis][i] = box_empty();
             cnt[axis][i] = 0;
         }
     }
     for (k = t->begin; k < t->end; k++) {
         const struct ref *r = &refs[k];
-        for (axis = 0; axis < 3; axis++) {
-            int b = bin_of(r->lo[axis] + r->hi[axis], t->cbox.lo[axis], scale[axis]);
-            box_grow(&bins[axis][b], r->lo, r->hi);
-            cnt[axis][b]++;
-        }
+        int bx = bin_of(r->lo[0] + r->hi[0], t->cbox.lo[0], scale[0], nbins);
+        int by = bin_of(r->lo[1] + r->hi[1], t->cbox.lo[1], scale[1], nbins);
+        int bz = bin_of(r->lo[2] + r->hi[2], t->cbox.lo[2], scale[2], nbins);
+        box_grow(&bins[0][bx], r->lo, r->hi);
+        box_grow(&bins[1][by], r->lo, r->hi);
+        box_grow(&bins[2][bz], r->lo, r->hi);
+        cnt[0][bx]++;
+        cnt[1][by]++;
+        cnt[2][bz]++;
     }
     for (axis = 0; axis < 3; axis++) {
         float right_cost[BINS];
-        struct box right_box[BINS], acc = box_empty();
+        struct box acc = box_empty();
         uint32_t n = 0, left_n = 0;
         if (scale[axis] == 0.0f)
             continue;
-        /* Sweep from the right: right_cost[i] is the cost of bins i..BINS-1 as one side. */
-        for (i = BINS - 1; i > 0; i--) {
+        /* Sweep from the right: right_cost[i] is the cost of bins i..nbins-1 as one side. */
+        for (i = nbins - 1; i > 0; i--) {
             box_grow(&acc, bins[axis][i].lo, bins[axis][i].hi);
             n += cnt[axis][i];
-            right_box[i] = acc;
             right_cost[i] = box_half_area(&acc) * (float)n;
         }
         acc = box_empty();
-        for (i = 1; i < BINS; i++) {
+        for (i = 1; i < nbins; i++) {
             float cost;
             box_grow(&acc, bins[axis][i - 1].lo, bins[axis][i - 1].hi);
             left_n += cnt[axis][i - 1];
@@ -145,10 +158,14 @@ static int find_split(const struct ref *refs, const struct task *t, struct split
                 best->axis = axis;
                 best->bin = i;
                 best->cost = cost;
-                best->left = acc;
-                best->right = right_box[i];
             }
         }
+    }
+    if (found) {
+        best->left = best->right = box_empty();
+        for (i = 0; i < nbins; i++)
+            box_grow(i < best->bin ? &best->left : &best->right, bins[best->axis][i].lo,
+                     bins[best->axis][i].hi);
     }
     return found;
 }
@@ -158,7 +175,8 @@ static int find_split(const struct ref *refs, const struct task *t, struct split
 static uint32_t partition(struct ref *refs, const struct task *t, const struct split *s,
                           struct box *lc, struct box *rc)
 {
-    float lo = t->cbox.lo[s->axis], scale = bin_scale(&t->cbox, s->axis);
+    int nbins = bin_count(t);
+    float lo = t->cbox.lo[s->axis], scale = bin_scale(&t->cbox, s->axis, nbins);
     uint32_t i = t->begin, j = t->end;
     *lc = *rc = box_empty();
     while (i < j) {
@@ -166,7 +184,7 @@ static uint32_t partition(struct ref *refs, const struct task *t, const struct s
         int a;
         for (a = 0; a < 3; a++)
             c[a] = refs[i].lo[a] + refs[i].hi[a];
-        if (bin_of(c[s->axis], lo, scale) < s->bin) {
+        if (bin_of(c[s->axis], lo, scale, nbins) < s->bin) {
             box_grow(lc, c, c);
             i++;
         } else {
@@ -199,8 +217,8 @@ static void set_node_box(struct bvh_node *n, const struct box *b)
 {
     int a;
     for (a = 0; a < 3; a++) {
-        n->b[0][a] = b->lo[a];
-        n->b[1][a] = b->hi[a];
+        n->b[a] = b->lo[a];
+        n->b[a + 3] = b->hi[a];
     }
 }
 
@@ -360,29 +378,31 @@ void mc_bvh_free(struct bvh *b)
     b->node_count = 0;
 }
 
-/* Per-ray constants of the slab test. */
-struct slab_ray {
-    vec3 o, inv;   /* origin and 1/d (±inf for a zero component) */
-    int near[3];   /* per axis, which corner (0 = lower) the ray enters through */
-};
-
 /* 1 + 4·2^-23: covers the 1 + 2γ3 relative error of the slab distances (Ize, "Robust BVH Ray
  * Traversal", JCGT 2(2) 2013; pbrt-v4 Bounds3::IntersectP) plus the rounding of this product, so
  * a box is never missed by a ray that passes through it. */
 #define SLAB_GROW 1.00000048f
 
-/* Entry distance of the ray into box n within [0, tmax], or INFINITY when it misses. A zero
- * direction component with the origin exactly on a slab plane gives 0·inf = NaN; the comparisons
- * are ordered so that a NaN leaves the interval unchanged, which is right for a ray lying in the
- * (closed) slab, and makes a NaN ray visit boxes without ever reporting a hit. */
-static inline float slab_enter(const struct bvh_node *n, const struct slab_ray *s, float tmax)
+/* The ray as the slab test needs it: origin, 1/d (±inf for a zero component) and, per axis, the
+ * index into bvh_node.b of the plane the ray enters through (near) and leaves through (far). */
+struct slab_ray {
+    float o[3], inv[3];
+    int near[3], far[3];
+};
+
+/* Whether the ray meets box b (lower corner b[0..2], upper b[3..5]) within [0, tmax]; *tnear gets
+ * the entry distance. A zero direction component with the origin exactly on a slab plane gives
+ * 0·inf = NaN; the comparisons are ordered so that a NaN leaves the interval unchanged, which is
+ * right for a ray lying in the (closed) slab, and makes a NaN ray visit boxes without ever
+ * reporting a hit. Written without branches: the result is data dependent and unpredictable. */
+static inline int slab(const float *b, const struct slab_ray *s, float tmax, float *tnear)
 {
-    float tx0 = (n->b[s->near[0]][0] - s->o.x) * s->inv.x;
-    float ty0 = (n->b[s->near[1]][1] - s->o.y) * s->inv.y;
-    float tz0 = (n->b[s->near[2]][2] - s->o.z) * s->inv.z;
-    float tx1 = (n->b[1 - s->near[0]][0] - s->o.x) * s->inv.x;
-    float ty1 = (n->b[1 - s->near[1]][1] - s->o.y) * s->inv.y;
-    float tz1 = (n->b[1 - s->near[2]][2] - s->o.z) * s->inv.z;
+    float tx0 = (b[s->near[0]] - s->o[0]) * s->inv[0];
+    float ty0 = (b[s->near[1]] - s->o[1]) * s->inv[1];
+    float tz0 = (b[s->near[2]] - s->o[2]) * s->inv[2];
+    float tx1 = (b[s->far[0]] - s->o[0]) * s->inv[0];
+    float ty1 = (b[s->far[1]] - s->o[1]) * s->inv[1];
+    float tz1 = (b[s->far[2]] - s->o[2]) * s->inv[2];
     float t0 = 0.0f, t1 = tmax;
     t0 = tx0 > t0 ? tx0 : t0;
     t0 = ty0 > t0 ? ty0 : t0;
@@ -390,78 +410,94 @@ static inline float slab_enter(const struct bvh_node *n, const struct slab_ray *
     t1 = tx1 < t1 ? tx1 : t1;
     t1 = ty1 < t1 ? ty1 : t1;
     t1 = tz1 < t1 ? tz1 : t1;
-    return t0 <= t1 * SLAB_GROW ? t0 : INFINITY;
+    *tnear = t0;
+    return t0 <= t1 * SLAB_GROW;
 }
 
 /* Shared traversal; any_hit is a constant at each call site, so the compiler specialises it.
- * Children are tested in pairs at their parent, the nearer one is visited first and the other is
- * pushed with its entry distance, so that it is skipped when a closer hit has been found since. */
+ * Both children are tested at their parent; the nearer is visited first and the other is pushed
+ * with its entry distance, so that it is skipped when a closer hit has been found meanwhile.
+ * The ray constants and the current nearest distance live in locals (not behind pointers that the
+ * primitive tests could alias), so that they stay in registers. */
 static inline int traverse(const struct bvh *b, const struct prim *prims, const struct ray *r,
-                           struct hit *h, int any_hit)
+                           struct hit *out, int any_hit)
 {
     struct { uint32_t node; float t; } stack[DEPTH_MAX];
     const struct bvh_node *nodes = b->nodes;
     struct ray_prep q;
     struct slab_ray s;
-    int sp = 0, found = 0;
+    struct hit h;
+    float tmax = r->tmax, t_root;
+    int sp = 0, found = 0, a;
     uint32_t ni = 0;
 
     if (b->node_count == 0)
         return 0;
     mc_ray_prep(&q, r);
-    s.o = r->o;
-    s.inv = v3(1.0f / r->d.x, 1.0f / r->d.y, 1.0f / r->d.z);
-    s.near[0] = r->d.x < 0.0f;
-    s.near[1] = r->d.y < 0.0f;
-    s.near[2] = r->d.z < 0.0f;
-    h->t = r->tmax;
-    if (slab_enter(&nodes[0], &s, h->t) == INFINITY)
+    s.o[0] = r->o.x;
+    s.o[1] = r->o.y;
+    s.o[2] = r->o.z;
+    s.inv[0] = 1.0f / r->d.x;
+    s.inv[1] = 1.0f / r->d.y;
+    s.inv[2] = 1.0f / r->d.z;
+    for (a = 0; a < 3; a++) {
+        s.near[a] = s.inv[a] < 0.0f ? a + 3 : a;
+        s.far[a] = s.inv[a] < 0.0f ? a : a + 3;
+    }
+    if (!slab(nodes[0].b, &s, tmax, &t_root))
         return 0;
+    h.t = tmax;
     for (;;) {
         const struct bvh_node *n = &nodes[ni];
         if (n->count == 0) {
-            uint32_t l = n->index, rr = n->index + 1;
-            float tl = slab_enter(&nodes[l], &s, h->t), tr = slab_enter(&nodes[rr], &s, h->t);
-            if (tl != INFINITY && tr != INFINITY) {
-                if (tr < tl) {
-                    uint32_t u = l;
-                    float tu = tl;
-                    l = rr;
-                    rr = u;
-                    tl = tr;
-                    tr = tu;
+            const struct bvh_node *c = &nodes[n->index];
+            float tl, tr;
+            int hl = slab(c[0].b, &s, tmax, &tl), hr = slab(c[1].b, &s, tmax, &tr);
+            /* Branches, not arithmetic, choose the next node: a predicted branch lets the
+             * processor start loading that node before the box tests have finished, which
+             * matters more than the occasional misprediction. */
+            if (hl && hr) {
+                if (s.inv[n->axis] < 0.0f) {
+                    stack[sp].node = n->index;
+                    stack[sp].t = tl;
+                    ni = n->index + 1;
+                } else {
+                    stack[sp].node = n->index + 1;
+                    stack[sp].t = tr;
+                    ni = n->index;
                 }
-                stack[sp].node = rr;
-                stack[sp].t = tr;
                 sp++;
-                ni = l;
                 continue;
             }
-            if (tl != INFINITY) {
-                ni = l;
+            if (hl) {
+                ni = n->index;
                 continue;
             }
-            if (tr != INFINITY) {
-                ni = rr;
+            if (hr) {
+                ni = n->index + 1;
                 continue;
             }
         } else {
             uint32_t k, end = n->index + n->count;
             for (k = n->index; k < end; k++) {
-                if (mc_prim_intersect_prep(&prims[k], &q, h)) {
+                if (mc_prim_intersect_prep(&prims[k], &q, &h)) {
                     if (any_hit)
                         return 1;
-                    h->prim = k;
+                    h.prim = k;
                     found = 1;
                 }
             }
+            tmax = h.t;
         }
         /* Pop, skipping nodes that start beyond the nearest hit so far. */
         do {
-            if (sp == 0)
+            if (sp == 0) {
+                if (found)
+                    *out = h;
                 return found;
+            }
             sp--;
-        } while (!(stack[sp].t <= h->t * SLAB_GROW));
+        } while (!(stack[sp].t <= tmax * SLAB_GROW));
         ni = stack[sp].node;
     }
 }

@@ -38,7 +38,7 @@ static vec3 sample_direct(const struct scene *s, const struct surface *sf, const
     struct ray shadow;
     float pmf, light_pdf, weight;
     vec3 wi, f, target;
-    int li = mc_light_table_pick(&s->light_table, mc_sampler_1d(smp), &pmf);
+    int li = mc_alias_sample(&s->light_select, mc_sampler_1d_double(smp), &pmf);
     vec2 u = mc_sampler_2d(smp);
     if (li < 0 || !mc_light_sample(s, &s->lights[li], sf->p, u, &ls) || v3_is_zero(ls.L))
         return v3s(0.0f);
@@ -73,7 +73,7 @@ static vec3 sample_direct(const struct scene *s, const struct surface *sf, const
 static float emitted_weight(const struct scene *s, int light, vec3 prev_p, float bsdf_pdf,
                             vec3 dir, float t, const struct surface *sf)
 {
-    float light_pdf = mc_light_table_pmf(&s->light_table, (size_t)light)
+    float light_pdf = mc_alias_pmf(&s->light_select, (size_t)light)
                       * mc_light_pdf(s, &s->lights[light], prev_p, dir, t, sf);
     return power_heuristic(bsdf_pdf, light_pdf);
 }

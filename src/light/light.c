@@ -4,65 +4,8 @@
  * Wang 1996), the constant environment uniformly over the sphere. */
 #include "light/light.h"
 
-#include <stdlib.h>
-
 #include "sample/warp.h"
 #include "scene/scene.h"
-
-int mc_light_table_build(struct light_table *t, const struct light *lights, size_t n)
-{
-    double total = 0.0, run = 0.0;
-    size_t i;
-    t->cdf = NULL;
-    t->count = 0;
-    for (i = 0; i < n; i++)
-        total += lights[i].power;
-    if (n == 0 || !(total > 0.0))
-        return 0;
-    t->cdf = malloc(n * sizeof *t->cdf);
-    if (!t->cdf)
-        return -1;
-    for (i = 0; i < n; i++) {
-        run += lights[i].power;
-        t->cdf[i] = (float)(run / total);
-    }
-    t->cdf[n - 1] = 1.0f;
-    t->count = n;
-    return 0;
-}
-
-void mc_light_table_free(struct light_table *t)
-{
-    free(t->cdf);
-    t->cdf = NULL;
-    t->count = 0;
-}
-
-float mc_light_table_pmf(const struct light_table *t, size_t i)
-{
-    if (i >= t->count)
-        return 0.0f;
-    return t->cdf[i] - (i > 0 ? t->cdf[i - 1] : 0.0f);
-}
-
-int mc_light_table_pick(const struct light_table *t, float u, float *pmf)
-{
-    size_t lo = 0, hi = t->count;
-    if (t->count == 0)
-        return -1;
-    /* First i with u < cdf[i]; lights of zero power have cdf[i] == cdf[i-1] and are never chosen. */
-    while (lo < hi) {
-        size_t mid = lo + (hi - lo) / 2;
-        if (u < t->cdf[mid])
-            hi = mid;
-        else
-            lo = mid + 1;
-    }
-    if (lo >= t->count)
-        lo = t->count - 1;
-    *pmf = mc_light_table_pmf(t, lo);
-    return (int)lo;
-}
 
 /* Radius of a sphere bounding the scene: the environment's power is that of a disk of this radius
  * receiving its radiance (pbrt-v4, UniformInfiniteLight::Phi). */
@@ -74,7 +17,7 @@ static float scene_radius(const struct scene *s)
     return fmaxf(0.5f * v3_length(v3_sub(b.hi, b.lo)), 1e-6f);
 }
 
-float mc_light_power(const struct scene *s, const struct light *l)
+double mc_light_power(const struct scene *s, const struct light *l)
 {
     switch (l->kind) {
     case LIGHT_POINT:

@@ -1,5 +1,6 @@
 /* light.h: emitters — point lights, area lights (emitting primitives) and the constant
- * environment — with sampling by solid angle and power-proportional light selection. */
+ * environment — with sampling by solid angle. Lights are chosen in proportion to their power by an
+ * alias table (sample/alias.h) that the scene holds. */
 #ifndef MCRT_LIGHT_H
 #define MCRT_LIGHT_H
 
@@ -16,13 +17,7 @@ struct light {
     vec3 position;   /* point */
     vec3 intensity;  /* point: W/sr; environment: radiance */
     uint32_t prim;   /* area: the emitting primitive */
-    float power;     /* scalar power (mean over channels) used for selection; set by prepare */
-};
-
-/* Discrete distribution over the lights in proportion to power (a CDF searched by bisection). */
-struct light_table {
-    float *cdf;      /* cdf[i] = P(light < i+1); cdf[n-1] = 1 */
-    size_t count;
+    double power;    /* scalar power (mean over channels) used for selection; set by prepare */
 };
 
 /* A sample toward a light from a shading point. */
@@ -36,16 +31,8 @@ struct light_sample {
     int delta;       /* the light is a delta distribution (point light): no MIS */
 };
 
-/* Build the selection table. Returns 0 on success, -1 when out of memory. */
-int mc_light_table_build(struct light_table *t, const struct light *lights, size_t n);
-void mc_light_table_free(struct light_table *t);
-/* Choose a light index for u in [0,1); *pmf receives its probability. -1 when there is none. */
-int mc_light_table_pick(const struct light_table *t, float u, float *pmf);
-/* Probability of choosing light i. */
-float mc_light_table_pmf(const struct light_table *t, size_t i);
-
 /* Scalar power of a light (mean over RGB channels), for selection. */
-float mc_light_power(const struct scene *s, const struct light *l);
+double mc_light_power(const struct scene *s, const struct light *l);
 /* Sample a direction toward l from point p. Returns 0 when there is no sample (pdf 0, or the
  * sampled point shows p its non-emitting side). */
 int mc_light_sample(const struct scene *s, const struct light *l, vec3 p, vec2 u,

@@ -132,10 +132,11 @@ float mc_distrib1d_sample(const struct mc_distrib1d *d, double u, float *pdf, si
     float x = (float)(d->min + width(d) * (((double)o + du) / (double)d->count));
     /* Rounding to float may carry x across an edge of the bin (or onto max): step it back so
      * that x lies in bin o, whose pdf is returned. Only bins narrower than the float spacing
-     * (over 2^23 bins on [0, 1)) can fail to contain x. */
-    while (bin_of(d, x) > o)
+     * (over 2^23 bins on [0, 1)) can fail to contain x. The bounds stop the steps at the ends
+     * of the domain, and at once for a NaN x (from a NaN u). */
+    while (x > d->min && bin_of(d, x) > o)
         x = nextafterf(x, -INFINITY);
-    while (bin_of(d, x) < o)
+    while (x < d->max && bin_of(d, x) < o)
         x = nextafterf(x, INFINITY);
     if (pdf)
         *pdf = bin_pdf(d, d->func[o]);

@@ -25,6 +25,8 @@ void mc_sampler_pixel(struct sampler *s, uint64_t seed, int x, int y, int spp, i
 vec2 mc_sampler_start(struct sampler *s, uint32_t index);
 
 static inline float mc_sampler_1d(struct sampler *s) { return pcg32_float(&s->rng); }
+/* 53 random bits, for choices among many outcomes (the alias table's column and coin). */
+static inline double mc_sampler_1d_double(struct sampler *s) { return pcg32_double(&s->rng); }
 static inline vec2 mc_sampler_2d(struct sampler *s)
 {
     float a = pcg32_float(&s->rng);

@@ -2,6 +2,8 @@
  * place, with no allocation per token; format after Wavefront's "Object Files (.obj)" appendix B1. */
 #include "scene/obj.h"
 
+#include "core/file.h"
+
 #include <errno.h>
 #include <float.h>
 #include <math.h>
@@ -9,7 +11,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 int mc_edges_degenerate(vec3 e1, vec3 e2)
 {
@@ -20,72 +21,6 @@ int mc_edges_degenerate(vec3 e1, vec3 e2)
     /* The renderer computes the normal in float: it must not underflow to zero there either.
      * Written as !(a > b) so that a NaN (from an infinite edge) also counts as degenerate. */
     return !(c2 > 1e-12 * l2) || !(v3_length2(v3_cross(e1, e2)) > 0.0f);
-}
-
-/* Read the whole file into a NUL-terminated buffer (the NUL stops strtod at the end). */
-static mcrt_status read_file(const struct obj_mesh *m, char **out, size_t *out_len, mc_diag *d)
-{
-    FILE *f = fopen(m->path, "rb");
-    struct stat st;
-    char *buf = NULL;
-    size_t len = 0, cap = 0;
-    int e;
-    if (!f)
-        return mc_fail(d, MCRT_ERR_IO, "%s: cannot open '%s': %s", m->origin, m->path,
-                       strerror(errno));
-    if (fstat(fileno(f), &st) == 0 && S_ISREG(st.st_mode)) {
-        if ((unsigned long long)st.st_size > MC_OBJ_MAX_BYTES)
-            goto too_large;
-        cap = (size_t)st.st_size + 1;
-        if (!(buf = malloc(cap)))
-            goto nomem;
-    }
-    for (;;) {
-        size_t got;
-        if (len + 1 >= cap) {
-            /* Full, or nothing allocated yet: grow only when the file goes on, so that a file
-             * whose size fstat gave is read with no reallocation. */
-            int c = getc(f);
-            size_t ncap = cap < 65536 ? 65536 : cap * 2;
-            char *nb;
-            if (c == EOF)
-                break;
-            if (len >= MC_OBJ_MAX_BYTES)
-                goto too_large;
-            if (ncap > MC_OBJ_MAX_BYTES + 1)
-                ncap = MC_OBJ_MAX_BYTES + 1;
-            if (!(nb = realloc(buf, ncap)))
-                goto nomem;
-            buf = nb;
-            cap = ncap;
-            buf[len++] = (char)c;
-        }
-        got = fread(buf + len, 1, cap - 1 - len, f);
-        len += got;
-        if (got == 0)
-            break;
-    }
-    e = errno;
-    if (ferror(f)) {
-        free(buf);
-        fclose(f);
-        return mc_fail(d, MCRT_ERR_IO, "%s: cannot read '%s': %s", m->origin, m->path, strerror(e));
-    }
-    if (!buf && !(buf = malloc(1))) /* an empty file of unknown size */
-        goto nomem;
-    fclose(f);
-    buf[len] = '\0';
-    *out = buf;
-    *out_len = len;
-    return MCRT_OK;
-nomem:
-    free(buf);
-    fclose(f);
-    return mc_fail(d, MCRT_ERR_NOMEM, "%s: out of memory reading '%s'", m->origin, m->path);
-too_large:
-    free(buf);
-    fclose(f);
-    return mc_fail(d, MCRT_ERR_IO, "%s: '%s' is larger than 1 GiB", m->origin, m->path);
 }
 
 /* A growable array of vec3. */
@@ -485,7 +420,7 @@ mcrt_status mc_obj_load(struct scene *s, const struct obj_mesh *m, struct obj_st
     r.s = s;
     r.d = d;
     normal_matrix(&r);
-    st = read_file(m, &buf, &len, d);
+    st = mc_read_file(m->path, MC_OBJ_MAX_BYTES, m->origin, &buf, &len, d);
     if (st)
         return st;
     st = read_lines(&r, buf, len);

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bsdf/bsdf.h"
 #include "scene/lex.h"
 #include "scene/obj.h"
 
@@ -27,6 +28,8 @@ enum vkind {
     V_POINT,     /* three numbers (a point or a vector) */
     V_RGB,       /* one number (grey) or three, none negative */
     V_ALBEDO,    /* V_RGB at most 1: a surface reflecting more than arrives would create energy */
+    V_ALBEDO_OR_NONE, /* V_ALBEDO, or no number at all (metal: then 'eta' and 'k' say it) */
+    V_UNIT,      /* one number in [0, 1] */
     V_CHOICE,    /* one of the key's words */
     V_NAME,      /* a material name */
     V_PATH,      /* a quoted string */
@@ -45,7 +48,7 @@ struct key {
     const char *noun;            /* V_ALBEDO: what the number is, for the message */
 };
 
-#define MAX_KEYS 10
+#define MAX_KEYS 11
 
 /* The values of one block as given; the finishing function applies defaults. */
 struct value {
@@ -258,12 +261,17 @@ static void read_numbers(struct parser *p, struct value *v)
 static void check_count(struct parser *p, const struct block *b, const struct key *k,
                         const struct value *v)
 {
-    int one_or_three = k->kind == V_RGB || k->kind == V_ALBEDO || k->kind == V_SCALE;
+    int one_or_three = k->kind == V_RGB || k->kind == V_ALBEDO || k->kind == V_SCALE
+                       || k->kind == V_ALBEDO_OR_NONE;
     int want = k->kind == V_POINT || k->kind == V_TRANSLATE ? 3 : k->kind == V_ROTATE ? 4 : 1;
-    if (one_or_three ? v->n == 1 || v->n == 3 : v->n == want)
+    if (one_or_three ? v->n == 1 || v->n == 3 || (v->n == 0 && k->kind == V_ALBEDO_OR_NONE)
+                     : v->n == want)
         return;
     if (p->tok.kind == TOK_EOF)
         fail_unclosed(p, b);
+    if (k->kind == V_ALBEDO_OR_NONE)
+        fail(p, &v->key, "'%s' needs 1 or 3 numbers, or none with 'eta' and 'k', found %d",
+             k->name, v->n);
     if (one_or_three)
         fail(p, &v->key, "'%s' needs 1 or 3 numbers, found %d", k->name, v->n);
     if (k->kind == V_ROTATE)
@@ -409,12 +417,17 @@ static void check_numbers(struct parser *p, const struct key *k, const struct va
             fail(p, &v->at[0], "'%s' must be an integer from %.0f to %.0f, not '%.*s'", k->name,
                  k->lo, k->hi, (int)v->at[0].len, v->at[0].text);
         break;
+    case V_UNIT:
+        if (!(v->x[0] >= 0.0 && v->x[0] <= 1.0))
+            fail(p, &v->at[0], "'%s' must be between 0 and 1", k->name);
+        break;
     case V_RGB:
     case V_ALBEDO:
+    case V_ALBEDO_OR_NONE:
         for (i = 0; i < v->n; i++) {
             if (v->x[i] < 0.0)
                 fail(p, &v->at[i], "'%s' must not be negative", k->name);
-            if (k->kind == V_ALBEDO && v->x[i] > 1.0)
+            if (k->kind != V_RGB && v->x[i] > 1.0)
                 fail(p, &v->at[i], "'%s' must be at most 1 (%s above 1 creates energy)", k->name,
                      k->noun);
         }
@@ -572,13 +585,21 @@ static void finish_integrator(struct parser *p, struct block *b)
         it->rr_depth = (int)b->v[INT_RR_DEPTH].at[0].num;
 }
 
-enum { MAT_DIFFUSE, MAT_MIRROR, MAT_GLASS, MAT_IOR, MAT_TINT };
+/* The first five keys are the material's kind: exactly one is given. */
+enum { MAT_DIFFUSE, MAT_MIRROR, MAT_GLASS, MAT_METAL, MAT_PLASTIC, MAT_IOR, MAT_TINT, MAT_ROUGHNESS,
+       MAT_ALPHA, MAT_ETA, MAT_K };
 static const struct key material_keys[] = {
     {"diffuse", V_ALBEDO, 0, 0, NULL, NULL, "albedo"},
     {"mirror", V_ALBEDO, 0, 0, NULL, NULL, "reflectance"},
     {"glass", V_FLAG, 0, 0, NULL, NULL, NULL},
+    {"metal", V_ALBEDO_OR_NONE, 0, 0, NULL, NULL, "reflectance"},
+    {"plastic", V_ALBEDO, 0, 0, NULL, NULL, "albedo"},
     {"ior", V_REAL, 0, INFINITY, "must be positive", NULL, NULL},
     {"tint", V_ALBEDO, 0, 0, NULL, NULL, "tint"},
+    {"roughness", V_UNIT, 0, 0, NULL, NULL, NULL},
+    {"alpha", V_UNIT, 0, 0, NULL, NULL, NULL},
+    {"eta", V_RGB, 0, 0, NULL, NULL, NULL},
+    {"k", V_RGB, 0, 0, NULL, NULL, NULL},
 };
 
 /* array, with room for at least count + 1 elements of size elem (capacity *cap, doubled). */
@@ -593,6 +614,13 @@ static void *grow(struct parser *p, void *array, size_t *cap, size_t count, size
         fail_nomem(p);
     *cap = ncap;
     return q;
+}
+
+/* Refuse optional key `key` unless it belongs to the material's kind (`ok`); `kinds` names them. */
+static void only_for(struct parser *p, const struct block *b, int key, int ok, const char *kinds)
+{
+    if (b->v[key].set && !ok)
+        fail(p, &b->v[key].key, "'%s' is only for %s", material_keys[key].name, kinds);
 }
 
 static void finish_material(struct parser *p, struct block *b)
@@ -610,7 +638,7 @@ static void finish_material(struct parser *p, struct block *b)
     }
     if (idx >= 0)
         fail(p, nm, "duplicate material '%s'", m.name);
-    for (i = MAT_DIFFUSE; i <= MAT_GLASS; i++) {
+    for (i = MAT_DIFFUSE; i <= MAT_PLASTIC; i++) {
         const struct value *v = &b->v[i], *f = &b->v[first < 0 ? i : first];
         if (!v->set)
             continue;
@@ -621,16 +649,46 @@ static void finish_material(struct parser *p, struct block *b)
         first = i;
     }
     if (!given)
-        fail(p, nm, "material '%s' needs one of 'diffuse', 'mirror' or 'glass'", m.name);
-    if (first != MAT_GLASS)
-        for (i = MAT_IOR; i <= MAT_TINT; i++)
-            if (b->v[i].set)
-                fail(p, &b->v[i].key, "'%s' is only for glass materials", material_keys[i].name);
-    m.kind = first == MAT_DIFFUSE ? MATERIAL_DIFFUSE : first == MAT_MIRROR ? MATERIAL_MIRROR
-                                                                            : MATERIAL_GLASS;
+        fail(p, nm, "material '%s' needs one of 'diffuse', 'mirror', 'glass', 'metal' or 'plastic'",
+             m.name);
+    /* Which kinds each optional key belongs to. */
+    only_for(p, b, MAT_IOR, first == MAT_GLASS || first == MAT_PLASTIC, "glass and plastic materials");
+    only_for(p, b, MAT_TINT, first == MAT_GLASS, "glass materials");
+    only_for(p, b, MAT_ROUGHNESS, first >= MAT_GLASS, "glass, metal and plastic materials");
+    only_for(p, b, MAT_ALPHA, first >= MAT_GLASS, "glass, metal and plastic materials");
+    only_for(p, b, MAT_ETA, first == MAT_METAL && b->v[MAT_METAL].n == 0,
+             "a metal given without a reflectance");
+    only_for(p, b, MAT_K, first == MAT_METAL && b->v[MAT_METAL].n == 0,
+             "a metal given without a reflectance");
+    if (b->v[MAT_ROUGHNESS].set && b->v[MAT_ALPHA].set)
+        fail(p, &b->v[after(&b->v[MAT_ALPHA].key, &b->v[MAT_ROUGHNESS].key) ? MAT_ALPHA : MAT_ROUGHNESS].key,
+             "material '%s' has both 'roughness' and 'alpha': give one", m.name);
+    if (first == MAT_METAL && b->v[MAT_METAL].n == 0 && !(b->v[MAT_ETA].set && b->v[MAT_K].set))
+        fail(p, &b->v[MAT_METAL].key,
+             "metal '%s' needs a reflectance ('metal 0.9 0.6 0.3') or both 'eta' and 'k'", m.name);
+    switch (first) {
+    case MAT_DIFFUSE: m.kind = MATERIAL_DIFFUSE; break;
+    case MAT_MIRROR: m.kind = MATERIAL_MIRROR; break;
+    case MAT_GLASS: m.kind = MATERIAL_GLASS; break;
+    case MAT_METAL: m.kind = MATERIAL_METAL; break;
+    default: m.kind = MATERIAL_PLASTIC; break;
+    }
     m.color = first == MAT_GLASS ? (b->v[MAT_TINT].set ? vec_of(&b->v[MAT_TINT]) : v3s(1.0f))
-                                 : vec_of(&b->v[first]);
+              : first == MAT_METAL && b->v[MAT_METAL].n == 0 ? v3s(1.0f)
+                                                            : vec_of(&b->v[first]);
     m.ior = b->v[MAT_IOR].set ? (float)b->v[MAT_IOR].x[0] : 1.5f;
+    /* Perceptual roughness r maps to α = r² (Burley 2012; pbrt-v4 remaproughness). */
+    m.alpha = b->v[MAT_ALPHA].set      ? (float)b->v[MAT_ALPHA].x[0]
+              : b->v[MAT_ROUGHNESS].set ? (float)(b->v[MAT_ROUGHNESS].x[0] * b->v[MAT_ROUGHNESS].x[0])
+                                        : 0.0f;
+    if (first == MAT_METAL && b->v[MAT_METAL].n > 0) {
+        mc_metal_from_reflectance(m.color, &m.eta, &m.k);
+    } else if (first == MAT_METAL) {
+        m.eta = vec_of(&b->v[MAT_ETA]);
+        m.k = vec_of(&b->v[MAT_K]);
+        if (!(m.eta.x > 0.0f && m.eta.y > 0.0f && m.eta.z > 0.0f))
+            fail(p, &b->v[MAT_ETA].key, "'eta' must be positive");
+    }
     p->defs = grow(p, p->defs, &p->cap_defs, p->ndefs, sizeof *p->defs);
     p->defs[p->ndefs++] = *nm;
     if (mc_scene_add_material(p->s, &m) < 0)
@@ -842,9 +900,10 @@ static const struct block_kind block_kinds[] = {
 };
 #define BLOCK_KIND_COUNT (int)(sizeof block_kinds / sizeof block_kinds[0])
 
-/* Compile-time checks: struct block holds MAX_KEYS values (the mesh has the most keys), and the
- * parser remembers the first block of up to 16 kinds. */
+/* Compile-time checks: struct block holds MAX_KEYS values (the material and the mesh have the most
+ * keys), and the parser remembers the first block of up to 16 kinds. */
 typedef char check_max_keys[sizeof mesh_keys / sizeof mesh_keys[0] <= MAX_KEYS ? 1 : -1];
+typedef char check_material_keys[sizeof material_keys / sizeof material_keys[0] <= MAX_KEYS ? 1 : -1];
 typedef char check_kinds[sizeof block_kinds / sizeof block_kinds[0] <= 16 ? 1 : -1];
 
 static int find_block(struct parser *p)

@@ -1,7 +1,9 @@
 /* prepare.c: turns a parsed scene into a renderable one: the BVH over all primitives, one area
  * light per emitting primitive, the environment (the default white sky when nothing emits), and
- * the power-proportional light selection table. */
+ * the alias table that picks lights in proportion to power. */
 #include "scene/scene.h"
+
+#include <stdlib.h>
 
 mcrt_status mc_scene_prepare(struct scene *s, mc_diag *d)
 {
@@ -9,6 +11,7 @@ mcrt_status mc_scene_prepare(struct scene *s, mc_diag *d)
     struct light l;
     mcrt_status st;
     int has_light;
+    double *power;
     if (s->prepared)
         return MCRT_OK;
     if (s->material_count == 0)
@@ -43,10 +46,15 @@ mcrt_status mc_scene_prepare(struct scene *s, mc_diag *d)
         if (s->env_light < 0)
             return mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
     }
-    for (i = 0; i < s->light_count; i++)
-        s->lights[i].power = mc_light_power(s, &s->lights[i]);
-    if (mc_light_table_build(&s->light_table, s->lights, s->light_count) != 0)
+    power = malloc((s->light_count ? s->light_count : 1) * sizeof *power);
+    if (!power)
         return mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
+    for (i = 0; i < s->light_count; i++)
+        power[i] = s->lights[i].power = mc_light_power(s, &s->lights[i]);
+    st = mc_alias_build(&s->light_select, power, s->light_count, d);
+    free(power);
+    if (st != MCRT_OK)
+        return st;
     s->prepared = 1;
     return MCRT_OK;
 }

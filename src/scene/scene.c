@@ -31,7 +31,7 @@ void mc_scene_init(struct scene *s)
 void mc_scene_free(struct scene *s)
 {
     mc_bvh_free(&s->bvh);
-    mc_light_table_free(&s->light_table);
+    mc_alias_free(&s->light_select);
     free(s->materials);
     free(s->prims);
     free(s->normals);

@@ -9,6 +9,7 @@
 #include "core/diag.h"
 #include "geom/bvh.h"
 #include "light/light.h"
+#include "sample/alias.h"
 
 enum sampler_kind { SAMPLER_RANDOM, SAMPLER_STRATIFIED };
 enum filter_kind { FILTER_BOX };
@@ -62,7 +63,7 @@ struct scene {
 
     /* Built by mc_scene_prepare: */
     struct bvh bvh;
-    struct light_table light_table;  /* power-proportional light selection */
+    struct mc_alias light_select;    /* chooses a light in proportion to its power */
     int env_light;                   /* index of the environment light or -1 */
     int prepared;
 };

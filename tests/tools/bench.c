@@ -484,32 +484,51 @@ struct row {
     const struct reference *ref;
 };
 
-static void bvh_depth(const struct bvh *b, int *depth, double *avg_leaf)
+static float half_area(const float *b)
+{
+    float x = b[3] - b[0], y = b[4] - b[1], z = b[5] - b[2];
+    return x * y + y * z + z * x;
+}
+
+/* Depth, mean leaf size, and the SAH cost of the tree: expected inner-node visits and primitive
+ * tests of a random ray that crosses the root box, without early exit (surface area heuristic). */
+struct tree_stats {
+    int depth;
+    double avg_leaf, sah_inner, sah_prims;
+};
+
+static struct tree_stats tree_stats(const struct bvh *b)
 {
     struct { uint32_t node; int depth; } stack[128];
+    struct tree_stats ts = {0, 0, 0, 0};
     int sp = 0;
     size_t leaves = 0, prims = 0;
-    *depth = 0;
+    double root;
     if (b->node_count == 0)
-        return;
+        return ts;
+    root = half_area(b->nodes[0].b);
     stack[sp].node = 0;
     stack[sp++].depth = 0;
     while (sp > 0) {
         const struct bvh_node *n = &b->nodes[stack[--sp].node];
         int d = stack[sp].depth;
-        if (d > *depth)
-            *depth = d;
+        double p = half_area(n->b) / root;
+        if (d > ts.depth)
+            ts.depth = d;
         if (n->count) {
             leaves++;
             prims += n->count;
+            ts.sah_prims += p * n->count;
             continue;
         }
+        ts.sah_inner += p;
         stack[sp].node = n->index;
         stack[sp++].depth = d + 1;
         stack[sp].node = n->index + 1;
         stack[sp++].depth = d + 1;
     }
-    *avg_leaf = (double)prims / (double)leaves;
+    ts.avg_leaf = (double)prims / (double)leaves;
+    return ts;
 }
 
 static int bench_scene(const struct scene_def *sd, int threads, int quick, struct row *rows)
@@ -520,8 +539,9 @@ static int bench_scene(const struct scene_def *sd, int threads, int quick, struc
     struct ray_set sets[SET_COUNT];
     mc_diag d;
     double build_wall[3], build_cpu[3];
-    int builds = quick ? 1 : 3, reps = quick ? 1 : 3, i, depth;
-    double min_s = quick ? 0.05 : 0.25, avg_leaf = 0;
+    int builds = quick ? 1 : 3, reps = quick ? 1 : 3, i;
+    double min_s = quick ? 0.05 : 0.25;
+    struct tree_stats ts;
     uint64_t gh;
     size_t k;
 
@@ -561,11 +581,11 @@ static int bench_scene(const struct scene_def *sd, int threads, int quick, struc
         build_wall[i] = (clock_s(CLOCK_MONOTONIC) - w0) * 1e3;
     }
     free(orig);
-    bvh_depth(&b, &depth, &avg_leaf);
+    ts = tree_stats(&b);
     {
         double cpu = median(build_cpu, builds), wall = median(build_wall, builds);
-        printf("%-11s %9zu %9zu %5d %8.2f %10.1f %9.1f %9.1f %9.0f\n", sd->name, m.nt,
-               b.node_count, depth, avg_leaf,
+        printf("%-11s %9zu %9zu %5d %8.2f %6.1f %6.1f %10.1f %9.1f %9.1f %9.0f\n", sd->name, m.nt,
+               b.node_count, ts.depth, ts.avg_leaf, ts.sah_inner, ts.sah_prims,
                (double)(b.node_count * sizeof(struct bvh_node) + m.nt * sizeof(struct prim)) /
                    (double)m.nt,
                wall, cpu, cpu * 1e6 / (double)m.nt);
@@ -644,8 +664,8 @@ int main(int argc, char **argv)
            "%d threads; %s\n", sizeof(struct bvh_node), sizeof(struct prim), threads,
            quick ? "quick (1 repetition of >= 0.05 s)" : "medians of 3 repetitions of >= 0.25 s");
     printf("geometry hashes and PCG32 first outputs verified against the anchor definitions\n\n");
-    printf("%-11s %9s %9s %5s %8s %10s %9s %9s %9s\n", "build", "triangles", "nodes", "depth",
-           "avg leaf", "bytes/tri", "wall ms", "CPU ms", "CPU ns/tri");
+    printf("%-11s %9s %9s %5s %8s %6s %6s %10s %9s %9s %9s\n", "build", "triangles", "nodes",
+           "depth", "avg leaf", "SAH in", "SAH pr", "bytes/tri", "wall ms", "CPU ms", "CPU ns/tri");
     for (s = 0; s < SCENE_COUNT; s++) {
         if (only && strcmp(only, scenes[s].name) != 0)
             continue;

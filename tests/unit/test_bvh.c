@@ -65,18 +65,21 @@ static int box_may_hit(const struct aabb *b, const struct dray *q)
                 return 0;
             continue;
         }
-        ta = (l - q->o[a]) * q->inv[a];
-        tb = (u - q->o[a]) * q->inv[a];
-        t0 = fmax(t0, fmin(ta, tb));
-        t1 = fmin(t1, fmax(ta, tb));
+        ta = ((q->inv[a] < 0 ? u : l) - q->o[a]) * q->inv[a];
+        tb = ((q->inv[a] < 0 ? l : u) - q->o[a]) * q->inv[a];
+        t0 = ta > t0 ? ta : t0;
+        t1 = tb < t1 ? tb : t1;
     }
     return t0 <= t1;
 }
 
-/* Brute force over every primitive, in array order. When boxes is not NULL, primitives whose
- * bounds (widened by 1e-3, a thousand times more than the float rounding of where any primitive
- * test can report a hit in these unit-sized scenes) the ray misses are skipped; this is only a
- * speed-up, with its own double-precision slab test, independent of the BVH's. */
+/* Brute force over every primitive, in array order. When boxes is not NULL, it holds the bounds
+ * of each run of BLOCK consecutive primitives (after the build they are in leaf order, so runs
+ * are compact), and runs whose bounds widened by 1e-3 the ray misses are skipped. 1e-3 is a
+ * thousand times the float rounding of where any primitive test can report a hit in these
+ * unit-sized scenes, so this is only a speed-up, with its own double-precision slab test,
+ * independent of the BVH. */
+enum { BLOCK = 16 };
 static int brute_intersect(const struct prim *prims, const struct aabb *boxes, size_t n,
                            const struct ray *r, struct hit *h)
 {
@@ -87,8 +90,10 @@ static int brute_intersect(const struct prim *prims, const struct aabb *boxes, s
     mc_ray_prep(&q, r);
     h->t = r->tmax;
     for (i = 0; i < n; i++) {
-        if (boxes && !box_may_hit(&boxes[i], &dq))
+        if (boxes && i % BLOCK == 0 && !box_may_hit(&boxes[i / BLOCK], &dq)) {
+            i += BLOCK - 1;
             continue;
+        }
         if (mc_prim_intersect_prep(&prims[i], &q, h)) {
             h->prim = (uint32_t)i;
             found = 1;
@@ -124,8 +129,8 @@ static int check_tree(const struct bvh *b, const struct prim *prims, size_t n, i
             bad += nd->index != next_prim;
             for (k = nd->index; k < nd->index + nd->count && k < n; k++) {
                 struct aabb pb = mc_prim_bounds(&prims[k]);
-                bad += pb.lo.x < nd->b[0][0] || pb.lo.y < nd->b[0][1] || pb.lo.z < nd->b[0][2] ||
-                       pb.hi.x > nd->b[1][0] || pb.hi.y > nd->b[1][1] || pb.hi.z > nd->b[1][2];
+                bad += pb.lo.x < nd->b[0] || pb.lo.y < nd->b[1] || pb.lo.z < nd->b[2] ||
+                       pb.hi.x > nd->b[3] || pb.hi.y > nd->b[4] || pb.hi.z > nd->b[5];
             }
             next_prim += nd->count;
             continue;
@@ -139,7 +144,7 @@ static int check_tree(const struct bvh *b, const struct prim *prims, size_t n, i
             const struct bvh_node *ch = &b->nodes[c[k]];
             int a;
             for (a = 0; a < 3; a++)
-                bad += ch->b[0][a] < nd->b[0][a] || ch->b[1][a] > nd->b[1][a];
+                bad += ch->b[a] < nd->b[a] || ch->b[a + 3] > nd->b[a + 3];
             stack[sp].node = c[k];
             stack[sp].depth = dep + 1;
             sp++;
@@ -201,7 +206,8 @@ static void test_against_brute_force(void)
     n = make_scene(prims, &g);
     T_CHECK(mc_bvh_build(&b, prims, n, &d) == MCRT_OK, "build: %s", d.msg);
     for (k = 0; k < n; k++)
-        boxes[k] = mc_prim_bounds(&prims[k]);
+        boxes[k / BLOCK] = k % BLOCK ? aabb_union(boxes[k / BLOCK], mc_prim_bounds(&prims[k]))
+                                     : mc_prim_bounds(&prims[k]);
     T_CHECK(check_tree(&b, prims, n, &depth) == 0, "tree invariants");
     T_CHECK(depth < 64, "depth %d", depth);
     T_NOTE("mixed scene: %zu prims, %zu nodes, depth %d", n, b.node_count, depth);

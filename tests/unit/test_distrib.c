@@ -2,7 +2,6 @@
  * (src/sample/alias.h) and the rejection-sampled disk (src/sample/warp.h): samples against
  * their pdfs (chi-square, tests/chi2.h), pdfs and pmfs against the tabulated function, the
  * probabilities the alias table realises, inversion, edges of [0, 1) and degenerate inputs. */
-#include <float.h>
 #include <limits.h>
 #include <stdint.h>
 #include <string.h>
@@ -27,7 +26,7 @@ static int near_float(double got, double want)
     return fabs(got - want) <= FLOAT_REL * fabs(want) + FLOAT_ABS;
 }
 
-static const double U_TOP = 0x1.fffffffffffffp-1; /* the largest double below 1 */
+#define U_TOP 0x1.fffffffffffffp-1 /* the largest double below 1 */
 
 static struct chi2_spec spec(const char *name, chi2_sample_fn sample, chi2_density_fn density, void *ctx,
                              double x0, double x1, int nx, int ny, uint64_t seed)
@@ -65,8 +64,9 @@ static void bumps(float *f)
 {
     int i;
     for (i = 0; i < BUMPS_N; i++)
-        f[i] = (i == 0 || i == BUMPS_N - 1 || (i >= 20 && i < 30)) ? 0.0f
-                                                                    : (float)(1.0 + 0.8 * sin(2.0 * CHI2_PI * i / 10.0));
+        f[i] = (i == 0 || i == BUMPS_N - 1 || (i >= 20 && i < 30))
+                   ? 0.0f
+                   : (float)(1.0 + 0.8 * sin(2.0 * CHI2_PI * i / 10.0));
 }
 /* A steep exponential: the last bin is e^15 ≈ 3.3e6 times the first. */
 #define STEEP_N 64
@@ -118,14 +118,14 @@ static void check_values_1d(const char *name, const struct mc_distrib1d *d, cons
         double pdf = sum > 0.0 ? f[i] * n / (sum * w) : 1.0 / w, pmf = sum > 0.0 ? f[i] / sum : 1.0 / n;
         if (!near_float(mc_distrib1d_pdf(d, x), pdf) || !near_float(mc_distrib1d_pmf(d, i), pmf)) {
             bad++;
-            printf("  %s bin %zu: pdf %.9g (want %.9g), pmf %.9g (want %.9g)\n", name, i, mc_distrib1d_pdf(d, x),
-                   pdf, mc_distrib1d_pmf(d, i), pmf);
+            printf("  %s bin %zu: pdf %.9g (want %.9g), pmf %.9g (want %.9g)\n", name, i,
+                   mc_distrib1d_pdf(d, x), pdf, mc_distrib1d_pmf(d, i), pmf);
         }
     }
     T_CHECK(bad == 0, "%s: %d bins with a wrong pdf or pmf", name, bad);
     /* Σf·w/n in double, summed in the same order: a few roundings, 1e-15 relative. */
-    T_CHECK(fabs(mc_distrib1d_integral(d) - sum * w / n) <= 1e-15 * sum * w / n, "%s: integral %.17g, want %.17g",
-            name, mc_distrib1d_integral(d), sum * w / n);
+    T_CHECK(fabs(mc_distrib1d_integral(d) - sum * w / n) <= 1e-15 * sum * w / n,
+            "%s: integral %.17g, want %.17g", name, mc_distrib1d_integral(d), sum * w / n);
     T_CHECK(mc_distrib1d_pdf(d, (float)min - 1.0f) == 0.0f && mc_distrib1d_pdf(d, (float)max) == 0.0f,
             "%s: pdf outside [min, max) must be 0", name);
 }
@@ -149,7 +149,8 @@ static void check_continuous(const char *name, const float *f, size_t n, float m
     s = spec(name, sample_c1d, density_c1d, &c, min, max, (int)(4 * n), 1, seed);
     r = chi2_run(&s);
     report(name, &r);
-    T_CHECK(c.bad == 0, "%s: %ld samples outside the domain, with pdf 0, or disagreeing with pdf(x)", name, c.bad);
+    T_CHECK(c.bad == 0, "%s: %ld samples outside the domain, with pdf 0, or disagreeing with pdf(x)", name,
+            c.bad);
     mc_distrib1d_free(&d);
 }
 
@@ -270,7 +271,7 @@ static void test_distrib1d_sampling(void)
 
 static void test_distrib1d_edges(void)
 {
-    static const double us[] = {0.0, 0x1p-53, 0.5, 0x1.fffffep-1 /* largest float below 1 */, 0x1.fffffffffffffp-1};
+    static const double us[] = {0.0, 0x1p-53, 0.5, 0x1.fffffep-1 /* largest float below 1 */, U_TOP};
     float f[BUMPS_N];
     struct mc_distrib1d d;
     size_t k, o;
@@ -300,6 +301,10 @@ static void test_distrib1d_edges(void)
         T_CHECK(x1 < (BUMPS_N - 1.0f) / BUMPS_N && x1 >= (BUMPS_N - 1.0f) / BUMPS_N - 1e-6f,
                 "u -> 1: x %.9g, want just below 49/50", x1);
     }
+
+    /* A NaN u breaks the contract, but must not hang the sampler or index outside the table. */
+    mc_distrib1d_sample(&d, NAN, NULL, &o);
+    T_CHECK(o < BUMPS_N, "NaN u gave bin %zu", o);
 
     /* Inversion: u -> x -> u'. x is u's image rounded to float (and stepped back into its bin
      * when the rounding crossed an edge), so |x − x*| <= one float spacing at x, and the map's
@@ -340,8 +345,8 @@ static void test_distrib1d_edges(void)
         T_CHECK(mc_distrib1d_build(&d, &one, 1, 2.0f, 6.0f, NULL) == MCRT_OK, "single bin build");
         x = mc_distrib1d_sample(&d, 0.25, &pdf, NULL);
         T_CHECK(x == 3.0f && pdf == 0.25f, "single bin: x %g pdf %g", x, pdf);
-        T_CHECK(mc_distrib1d_integral(&d) == 12.0 && mc_distrib1d_pmf(&d, 0) == 1.0f, "single bin integral %g",
-                mc_distrib1d_integral(&d));
+        T_CHECK(mc_distrib1d_integral(&d) == 12.0 && mc_distrib1d_pmf(&d, 0) == 1.0f,
+                "single bin integral %g", mc_distrib1d_integral(&d));
         mc_distrib1d_free(&d);
     }
     /* A value whose probability underflows float (1.4e-45/1e38) is treated as zero: never
@@ -351,7 +356,8 @@ static void test_distrib1d_edges(void)
         T_CHECK(mc_distrib1d_build(&d, f2, 2, 0.0f, 1.0f, NULL) == MCRT_OK, "tiny value build");
         mc_distrib1d_sample(&d, 0.0, &pdf, &o);
         T_CHECK(o == 1 && pdf == 2.0f, "u = 0 chose bin %zu with pdf %g", o, pdf);
-        T_CHECK(mc_distrib1d_sample_discrete(&d, 0.0, &pmf) == 1 && pmf == 1.0f, "discrete u = 0, pmf %g", pmf);
+        T_CHECK(mc_distrib1d_sample_discrete(&d, 0.0, &pmf) == 1 && pmf == 1.0f, "discrete u = 0, pmf %g",
+                pmf);
         T_CHECK(mc_distrib1d_pmf(&d, 0) == 0.0f && mc_distrib1d_pdf(&d, 0.25f) == 0.0f,
                 "negligible bin: pmf %g, pdf %g", mc_distrib1d_pmf(&d, 0), mc_distrib1d_pdf(&d, 0.25f));
         mc_distrib1d_free(&d);
@@ -473,7 +479,7 @@ static void test_distrib2d(void)
     T_CHECK(c.bad == 0, "2D: %ld samples outside, with pdf 0 or disagreeing with pdf(x, y)", c.bad);
 
     {
-        static const double us[] = {0.0, 0.5, 0x1.fffffffffffffp-1};
+        static const double us[] = {0.0, 0.5, U_TOP};
         int a, b, edge_bad = 0;
         for (a = 0; a < 3; a++)
             for (b = 0; b < 3; b++) {
@@ -512,6 +518,39 @@ static void test_distrib2d(void)
             T_CHECK(p.x == 0.25f && p.y == 0.75f && pdf == 1.0f && mc_distrib2d_integral(&d) == 5.0,
                     "1x1: (%g, %g) pdf %g", p.x, p.y, pdf);
         }
+        mc_distrib2d_free(&d);
+    }
+    /* Row 1's share of the mass, 2^-151, rounds to 0 in float, so the marginal never chooses
+     * it, although its value's own pdf, 2^-151·nx·ny = 2^-149, does not round to 0: the pdf
+     * must still be 0 there, where no sample can land. */
+    {
+        float f2[4] = {0x1p100f, 0.0f, 0x1p-51f, 0.0f};
+        int all = 1;
+        size_t k;
+        T_CHECK(mc_distrib2d_build(&d, f2, 2, 2, NULL) == MCRT_OK, "2x2 build");
+        T_CHECK(mc_distrib2d_pdf(&d, 0.25f, 0.75f) == 0.0f && mc_distrib2d_pdf(&d, 0.25f, 0.25f) == 4.0f,
+                "negligible row: pdf %g (want 0), heavy cell %g (want 4)", mc_distrib2d_pdf(&d, 0.25f, 0.75f),
+                mc_distrib2d_pdf(&d, 0.25f, 0.25f));
+        for (k = 0; k < 3; k++) {
+            static const double us[] = {0.0, 0.5, U_TOP};
+            float pdf;
+            vec2 p = mc_distrib2d_sample(&d, 0.5, us[k], &pdf);
+            all &= p.y < 0.5f && p.x < 0.5f && pdf == 4.0f;
+        }
+        T_CHECK(all, "negligible row: a sample left the heavy cell");
+        mc_distrib2d_free(&d);
+    }
+    /* Row 0 = {2^-56, 2^-41} beside a row of 2^100s: within its row the first value is not
+     * negligible (2^-15 of the row), but its pdf f/mean = 2^-155 rounds to 0, so it must be
+     * treated as 0, and u = (0, 0), which lands in row 0, must take the second cell. */
+    {
+        float f2[4] = {0x1p-56f, 0x1p-41f, 0x1p100f, 0x1p100f}, pdf;
+        vec2 p;
+        T_CHECK(mc_distrib2d_build(&d, f2, 2, 2, NULL) == MCRT_OK, "2x2 build");
+        p = mc_distrib2d_sample(&d, 0.0, 0.0, &pdf);
+        T_CHECK(p.x >= 0.5f && p.y < 0.5f && pdf > 0.0f && pdf == mc_distrib2d_pdf(&d, p.x, p.y) &&
+                    mc_distrib2d_pdf(&d, 0.25f, 0.25f) == 0.0f,
+                "negligible cell: sample (%g, %g) with pdf %g", p.x, p.y, pdf);
         mc_distrib2d_free(&d);
     }
     {
@@ -571,6 +610,26 @@ static void check_alias_exact(const char *name, const struct mc_alias *a, const 
     free(got);
 }
 
+/* The coin keeps u's bits below the column's: in every column c with 0.01 < q < 0.99, u at
+ * (c + q(1 ∓ 1e-9))/n must keep c and take the alias respectively. Recovering the coin as
+ * u·n − c costs ~n·2^-53 (1e-12 for n = 10^4), far inside the 1e-9·q margin; a coin computed
+ * in float (2^-24 of u·n, 6e-4 at n = 10^4) could not tell the two apart. */
+static void check_coin(const char *name, const struct mc_alias *a)
+{
+    size_t c;
+    int wrong = 0, tried = 0;
+    for (c = 0; c < a->count; c++) {
+        double q = a->bins[c].q, n = (double)a->count;
+        if (!(q > 0.01 && q < 0.99) || a->bins[c].alias == c)
+            continue;
+        tried++;
+        if (mc_alias_sample(a, (c + q * (1.0 - 1e-9)) / n, NULL) != (int)c ||
+            mc_alias_sample(a, (c + q * (1.0 + 1e-9)) / n, NULL) != (int)a->bins[c].alias)
+            wrong++;
+    }
+    T_CHECK(wrong == 0, "%s: %d of %d columns resolve the coin worse than 1e-9", name, wrong, tried);
+}
+
 static void check_alias(const char *name, const double *w, size_t n, uint64_t seed)
 {
     struct mc_alias a;
@@ -582,6 +641,7 @@ static void check_alias(const char *name, const double *w, size_t n, uint64_t se
         return;
     }
     check_alias_exact(name, &a, w, n);
+    check_coin(name, &a);
     check_discrete(name, draw_alias, &a, p, n, seed);
     mc_alias_free(&a);
     free(p);
@@ -627,8 +687,8 @@ static void test_alias_sampling(void)
             r = run_discrete("alias against wrong weights", draw_alias, &a, p, NU, 14, 1, &bad);
             T_NOTE("alias against wrong weights (expected to be rejected): chi2 %.1f, dof %d, p %.3g", r.chi2,
                    r.dof, r.p);
-            T_CHECK(!r.pass && r.dof > 0 && r.stray == 0 && r.p < 1e-12, "power: pass %d, p %g, %s", r.pass, r.p,
-                    r.why);
+            T_CHECK(!r.pass && r.dof > 0 && r.stray == 0 && r.p < 1e-12, "power: pass %d, p %g, %s", r.pass,
+                    r.p, r.why);
             mc_alias_free(&a);
         }
         free(p);
@@ -640,11 +700,11 @@ static void test_alias_degenerate(void)
     struct mc_alias a;
     float pmf;
     mc_diag diag;
-    static const double us[] = {0.0, 1.0 / 3.0, 0.5, 2.0 / 3.0, 0x1.fffffffffffffp-1};
+    static const double us[] = {0.0, 1.0 / 3.0, 0.5, 2.0 / 3.0, U_TOP};
     size_t k;
 
-    T_CHECK(mc_alias_build(&a, NULL, 0, NULL) == MCRT_OK && a.count == 0 && mc_alias_sample(&a, 0.5, &pmf) == -1 &&
-                mc_alias_pmf(&a, 0) == 0.0f,
+    T_CHECK(mc_alias_build(&a, NULL, 0, NULL) == MCRT_OK && a.count == 0 &&
+                mc_alias_sample(&a, 0.5, &pmf) == -1 && mc_alias_pmf(&a, 0) == 0.0f,
             "n = 0: an empty table");
     mc_alias_free(&a);
     {
@@ -680,14 +740,15 @@ static void test_alias_degenerate(void)
         int i;
         T_CHECK(mc_alias_build(&a, w, 2, NULL) == MCRT_OK, "{1e-30, 1e30} build");
         i = mc_alias_sample(&a, 0.0, &pmf);
-        T_CHECK(i == 1 && pmf == 1.0f && mc_alias_pmf(&a, 0) == 0.0f, "{1e-30, 1e30}: u = 0 gave %d, pmf %g", i,
-                pmf);
+        T_CHECK(i == 1 && pmf == 1.0f && mc_alias_pmf(&a, 0) == 0.0f, "{1e-30, 1e30}: u = 0 gave %d, pmf %g",
+                i, pmf);
         mc_alias_free(&a);
         w[0] = 1e-20;
         w[1] = 1e20;
         T_CHECK(mc_alias_build(&a, w, 2, NULL) == MCRT_OK, "{1e-20, 1e20} build");
         i = mc_alias_sample(&a, 0.0, &pmf);
-        T_CHECK(i == 0 && pmf > 0.0f && near_float(pmf, 1e-40), "{1e-20, 1e20}: u = 0 gave %d, pmf %g", i, pmf);
+        T_CHECK(i == 0 && pmf > 0.0f && near_float(pmf, 1e-40), "{1e-20, 1e20}: u = 0 gave %d, pmf %g", i,
+                pmf);
         mc_alias_free(&a);
     }
     /* Weights near DBL_MAX: their sum would overflow without the power-of-two rescaling. */
@@ -702,8 +763,8 @@ static void test_alias_degenerate(void)
         int v;
         for (v = 0; v < 3; v++) {
             diag.msg[0] = '\0';
-            T_CHECK(mc_alias_build(&a, bad[v], 2, &diag) == MCRT_ERR_INVALID && a.bins == NULL && a.count == 0 &&
-                        diag.msg[0] != '\0',
+            T_CHECK(mc_alias_build(&a, bad[v], 2, &diag) == MCRT_ERR_INVALID && a.bins == NULL &&
+                        a.count == 0 && diag.msg[0] != '\0',
                     "invalid weight %g accepted", bad[v][1]);
         }
         T_CHECK(mc_alias_build(&a, bad[0], (size_t)INT_MAX + 1, NULL) == MCRT_ERR_INVALID,
@@ -733,7 +794,12 @@ static int sample_rejection_disk(void *ctx, pcg32 *rng, double *x, double *y)
     c->attempts += steps / 2;
     *x = (double)p.x * p.x + (double)p.y * p.y;
     *y = phi < 0.0 ? phi + 2.0 * CHI2_PI : phi;
-    return *x < 1.0 && steps % 2 == 0 ? 1 : -1;
+    /* strictly inside, two values per attempt, and coordinates on the grid of cell centres
+     * (2k + 1)/2^24 − 1, symmetric about 0 */
+    return *x < 1.0 && steps % 2 == 0 && fabs(fmod(p.x * 0x1p24, 2.0)) == 1.0 &&
+                   fabs(fmod(p.y * 0x1p24, 2.0)) == 1.0
+               ? 1
+               : -1;
 }
 static double density_polar(void *ctx, double x, double y)
 {
