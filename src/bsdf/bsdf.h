@@ -24,10 +24,13 @@
 
 struct material;
 
-/* pbrt-v4's threshold for an "effectively smooth" TrowbridgeReitzDistribution. A lobe of
- * width ~α rad = 0.06° is at most a pixel wide in any ordinary view, light sampling cannot
- * find such a lobe's light (it only adds variance), and the near-delta D ~ 1/(πα²) ≥ 3e5 turns
- * every such light sample into a firefly; the delta path is exact and noise-free instead. */
+/* The α below which a surface is perfectly smooth, pbrt-v4's threshold for an "effectively
+ * smooth" TrowbridgeReitzDistribution. Such a lobe, ~2α = 0.1° wide, blurs a reflection by a
+ * few pixels at most (a 40° view 1000 pixels wide has 0.04° pixels). As a delta lobe it costs
+ * no light sample (one would almost never land in so narrow a lobe, and MIS would give it
+ * almost no weight when it did), its paths stay specular and noise-free, and the microfacet
+ * code never meets the ever larger D ~ 1/(πα²) (3e5 here) of smaller α. So α = 1e-4 renders
+ * exactly as the mirror. */
 #define MC_BSDF_SMOOTH_ALPHA 1e-3f
 
 struct bsdf {

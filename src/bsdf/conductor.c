@@ -1,7 +1,7 @@
 /* conductor.c: metal: the Torrance–Sparrow microfacet reflection of GGX with the exact Fresnel
  * reflectance of a conductor, or a delta reflection when smooth.
  * Reference: Walter et al. 2007, "Microfacet Models for Refraction through Rough Surfaces"
- * (eq. 20); pbrt-v4 §9.6 (ConductorBxDF). */
+ * (eq. 20); pbrt-v4 §9.4 and §9.6 (ConductorBxDF, TrowbridgeReitzDistribution). */
 #include "bsdf/bsdf_impl.h"
 
 vec3 mc_conductor_eval(const struct bsdf *b, vec3 wo, vec3 wi)

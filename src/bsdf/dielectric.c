@@ -67,8 +67,8 @@ vec3 mc_dielectric_eval(const struct bsdf *b, vec3 wo, vec3 wi)
     /* Walter 2007 eq. 21: f = |wi·wm| |wo·wm| η_wo² (1 − F) D G2 / (|cosθi| cosθo (η_wo wo·wm +
      * η_wi wi·wm)²). With η_wo = 1 this is the Jacobian above over η², i.e. the radiance-mode BTDF
      * (the 1/η² of specular.c), here times the tint. G2 is the height-correlated form of
-     * reflection, as in pbrt-v4 (Heitz 2014 §6.2's exact height-correlated form for
-     * transmission is a Beta function of the Λs; not used here). */
+     * reflection, as in pbrt-v4 (Heitz 2014's exact height-correlated form for transmission
+     * is a Beta function of the Λs; not used here). */
     f = refraction_transmittance(b, wo, wi, wm, eta) * mc_ggx_d(b->alpha, wm) * mc_ggx_g2(b->alpha, wo, wi) *
         v3_dot(wo, wm) * refraction_jacobian(wo, wi, wm, eta) / (eta * eta * wo.z * -wi.z);
     return v3_scale(b->color, f);

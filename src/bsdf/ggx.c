@@ -22,7 +22,7 @@ float mc_ggx_d(float alpha, vec3 wm)
     return a2 / (MC_PI * t * t);
 }
 
-/* √(1 + α² tan²θ) = 1 + 2Λ(w), with Λ GGX's Smith auxiliary function (Heitz 2014 eq. 86). In
+/* √(1 + α² tan²θ) = 1 + 2Λ(w), with Λ GGX's Smith auxiliary function (Heitz 2014). In
  * this form G1 and G2 below need no subtraction, and a grazing w (tan θ → ∞) gives +∞ and so
  * G = 0 rather than ∞/∞. Callers pass w.z ≠ 0. */
 static float smith_root(float alpha, vec3 w)
@@ -37,7 +37,7 @@ float mc_ggx_g1(float alpha, vec3 w)
 
 float mc_ggx_g2(float alpha, vec3 wo, vec3 wi)
 {
-    /* Height-correlated Smith masking–shadowing, G2 = 1/(1 + Λ(wo) + Λ(wi)) (Heitz 2014 eq. 99):
+    /* Height-correlated Smith masking–shadowing, G2 = 1/(1 + Λ(wo) + Λ(wi)) (Heitz 2014):
      * a microfacet hidden from wo is more likely also hidden from wi, which the separable
      * G1(wo)·G1(wi) ignores. */
     return 2.0f / (smith_root(alpha, wo) + smith_root(alpha, wi));
@@ -45,14 +45,14 @@ float mc_ggx_g2(float alpha, vec3 wo, vec3 wi)
 
 float mc_ggx_visible_pdf(float alpha, vec3 wo, vec3 wm)
 {
-    /* D_wo(wm) = G1(wo) max(0, wo·wm) D(wm) / cosθo (Heitz 2018 eq. 1). */
+    /* D_wo(wm) = G1(wo) max(0, wo·wm) D(wm) / cosθo (Heitz 2018). */
     float c = v3_dot(wo, wm);
     return c > 0.0f ? mc_ggx_g1(alpha, wo) * c * mc_ggx_d(alpha, wm) / wo.z : 0.0f;
 }
 
 vec3 mc_ggx_sample_visible(float alpha, vec3 wo, vec2 u)
 {
-    /* Heitz 2018, listing 1. Stretching by 1/α turns GGX into the distribution of a
+    /* Heitz 2018's algorithm. Stretching by 1/α turns GGX into the distribution of a
      * hemisphere's normals, whose visible normals from vh are the hemisphere's points above a
      * uniform point of the projected disk: half a disk (the projection of the lit cap) and
      * half an ellipse (the side), joined by warping the disk point's second coordinate. */

@@ -12,9 +12,9 @@ enum {
     LEAF_MIN = 2,    /* a node of at most this many primitives is always a leaf */
     LEAF_MAX = 8,    /* the SAH may choose a leaf of up to this many */
     SAH_DEPTH = 32,  /* below this depth nodes split at the median index (see DEPTH_MAX) */
-    /* From depth SAH_DEPTH on every split halves the count, so a node of n < 2^32 primitives
-     * reaches LEAF_MAX after at most 29 more levels: no node is deeper than 61. A traversal pushes
-     * at most one node per level, so this stack cannot overflow. */
+    /* From depth SAH_DEPTH on every split halves the count, so a node of n < 2^31 primitives
+     * reaches LEAF_MAX after at most 28 more levels: no node is deeper than 60. A traversal pushes
+     * at most one node per level, so its stack of DEPTH_MAX entries cannot overflow. */
     DEPTH_MAX = 64
 };
 /* SAH cost of visiting an inner node (two box tests), in units of one primitive test. */
@@ -357,8 +357,12 @@ mcrt_status mc_bvh_build(struct bvh *b, struct prim *prims, size_t n, mc_diag *d
         box_grow(&box, refs[i].lo, refs[i].hi);
         box_grow(&cbox, c, c);
     }
-    b->nodes = mem;
-    b->node_count = build_nodes(b->nodes, refs, (uint32_t)n, &box, &cbox);
+    b->node_count = build_nodes(mem, refs, (uint32_t)n, &box, &cbox);
+    /* Give back the unused tail (leaves hold several primitives). A shrinking realloc keeps the
+     * block in place in practice; if it moved, only the cache-line alignment would be lost. */
+    b->nodes = realloc(mem, b->node_count * sizeof *b->nodes);
+    if (!b->nodes)
+        b->nodes = mem;
     b->bounds.lo = v3(box.lo[0], box.lo[1], box.lo[2]);
     b->bounds.hi = v3(box.hi[0], box.hi[1], box.hi[2]);
 
@@ -393,8 +397,7 @@ struct slab_ray {
 /* Whether the ray meets box b (lower corner b[0..2], upper b[3..5]) within [0, tmax]; *tnear gets
  * the entry distance. A zero direction component with the origin exactly on a slab plane gives
  * 0·inf = NaN; the comparisons are ordered so that a NaN leaves the interval unchanged, which is
- * right for a ray lying in the (closed) slab, and makes a NaN ray visit boxes without ever
- * reporting a hit. Written without branches: the result is data dependent and unpredictable. */
+ * right for a ray lying in the (closed) slab. */
 static inline int slab(const float *b, const struct slab_ray *s, float tmax, float *tnear)
 {
     float tx0 = (b[s->near[0]] - s->o[0]) * s->inv[0];
@@ -415,10 +418,12 @@ static inline int slab(const float *b, const struct slab_ray *s, float tmax, flo
 }
 
 /* Shared traversal; any_hit is a constant at each call site, so the compiler specialises it.
- * Both children are tested at their parent; the nearer is visited first and the other is pushed
- * with its entry distance, so that it is skipped when a closer hit has been found meanwhile.
+ * Both children are tested at their parent. When both are hit, the one on the near side of the
+ * split plane (by the sign of the direction along the split axis) is visited first, and the other
+ * is pushed with its entry distance, so that it is skipped if a closer hit is found meanwhile.
  * The ray constants and the current nearest distance live in locals (not behind pointers that the
- * primitive tests could alias), so that they stay in registers. */
+ * primitive tests could alias), so that they stay in registers. Rays with a non-finite or zero
+ * direction, or a non-finite origin, hit nothing. */
 static inline int traverse(const struct bvh *b, const struct prim *prims, const struct ray *r,
                            struct hit *out, int any_hit)
 {
@@ -431,7 +436,7 @@ static inline int traverse(const struct bvh *b, const struct prim *prims, const 
     int sp = 0, found = 0, a;
     uint32_t ni = 0;
 
-    if (b->node_count == 0)
+    if (b->node_count == 0 || !v3_is_finite(r->o) || !v3_is_finite(r->d) || v3_is_zero(r->d))
         return 0;
     mc_ray_prep(&q, r);
     s.o[0] = r->o.x;

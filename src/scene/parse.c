@@ -677,6 +677,8 @@ static void finish_material(struct parser *p, struct block *b)
               : first == MAT_METAL && b->v[MAT_METAL].n == 0 ? v3s(1.0f)
                                                             : vec_of(&b->v[first]);
     m.ior = b->v[MAT_IOR].set ? (float)b->v[MAT_IOR].x[0] : 1.5f;
+    if (first == MAT_PLASTIC && m.ior < 1.0f)
+        fail(p, &b->v[MAT_IOR].at[0], "'ior' of a plastic's coat must be at least 1");
     /* Perceptual roughness r maps to α = r² (Burley 2012; pbrt-v4 remaproughness). */
     m.alpha = b->v[MAT_ALPHA].set      ? (float)b->v[MAT_ALPHA].x[0]
               : b->v[MAT_ROUGHNESS].set ? (float)(b->v[MAT_ROUGHNESS].x[0] * b->v[MAT_ROUGHNESS].x[0])
