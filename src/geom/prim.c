@@ -53,10 +53,11 @@ static int degenerate(const struct prim *p)
 }
 
 /* Woop et al. 2013: translate the vertices to the ray origin, permute and shear so that the ray
- * becomes the +z axis, then the 2D edge functions decide the hit. A point on an edge gives an edge
- * function of exactly 0 in every triangle sharing that edge, and the sign tests accept 0, so no ray
- * passes between neighbours. When a float edge function is exactly 0 it is recomputed in double
- * (pbrt-v4, Triangle::Intersect): the product differences are then exact, so the 0 is real. */
+ * becomes the +z axis, then the 2D edge functions decide the hit. Triangles sharing an edge
+ * compute its edge function from the same two transformed vertices, so they agree on the side the
+ * ray passes (with opposite signs), and a 0 (the ray exactly on the edge) is accepted by both: no
+ * ray slips between neighbours. When a float edge function is exactly 0 it is recomputed in
+ * double (pbrt-v4, Triangle::Intersect), where the products are exact, so the 0 is real. */
 static int intersect_triangle(const struct prim *p, const struct ray_prep *q, struct hit *h)
 {
     vec3 a = permute(v3_sub(p->p[0], q->r.o), q->kx, q->ky, q->kz);
