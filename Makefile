@@ -71,7 +71,7 @@ $(O)/mcrt: $(CLI_OBJ) $(O)/libmcrt.a
 	@$(if $(Q),echo "  LD      $@")
 	$(Q)$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $(CLI_OBJ) $(O)/libmcrt.a $(LDLIBS)
 
-$(O)/tests/%: tests/unit/%.c tests/t.h $(O)/libmcrt.a
+$(O)/tests/%: tests/unit/%.c tests/t.h tests/prim_util.h $(O)/libmcrt.a
 	@mkdir -p $(@D)
 	@$(if $(Q),echo "  CC      $<")
 	$(Q)$(CC) $(CFLAGS) -Itests -o $@ $< $(O)/libmcrt.a $(LDLIBS)

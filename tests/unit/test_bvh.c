@@ -6,20 +6,10 @@
 #include "core/rng.h"
 #include "geom/bvh.h"
 #include "geom/bvh_node.h"
+#include "prim_util.h"
 #include "t.h"
 
-static struct prim triangle(vec3 a, vec3 b, vec3 c)
-{
-    struct prim p;
-    memset(&p, 0, sizeof p);
-    p.kind = PRIM_TRIANGLE;
-    p.light = -1;
-    p.normals = -1;
-    p.p[0] = a;
-    p.p[1] = b;
-    p.p[2] = c;
-    return p;
-}
+static struct prim triangle(vec3 a, vec3 b, vec3 c) { return test_prim(PRIM_TRIANGLE, a, b, c); }
 
 static vec3 rand_in_box(pcg32 *g, float lo, float hi)
 {

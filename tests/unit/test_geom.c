@@ -6,22 +6,11 @@
 
 #include "core/rng.h"
 #include "geom/bvh.h"
+#include "prim_util.h"
 #include "t.h"
 
-static struct prim make(int kind, vec3 a, vec3 b, vec3 c)
-{
-    struct prim p;
-    memset(&p, 0, sizeof p);
-    p.kind = (uint8_t)kind;
-    p.light = -1;
-    p.normals = -1;
-    p.p[0] = a;
-    p.p[1] = b;
-    p.p[2] = c;
-    return p;
-}
 
-static struct prim sphere(vec3 c, float r) { return make(PRIM_SPHERE, c, v3(r, 0, 0), v3s(0)); }
+static struct prim sphere(vec3 c, float r) { return test_prim(PRIM_SPHERE, c, v3(r, 0, 0), v3s(0)); }
 
 static struct ray ray(vec3 o, vec3 d)
 {
@@ -58,7 +47,7 @@ static vec3 rand_in_ball(pcg32 *g, float radius)
 
 static void test_triangle(void)
 {
-    struct prim p = make(PRIM_TRIANGLE, v3(0, 0, 0), v3(1, 0, 0), v3(0, 1, 0));
+    struct prim p = test_prim(PRIM_TRIANGLE, v3(0, 0, 0), v3(1, 0, 0), v3(0, 1, 0));
     struct hit h;
     struct surface s;
     struct ray r = ray(v3(0.25f, 0.125f, 1), v3(0, 0, -1));
@@ -111,9 +100,9 @@ static int touched(const struct prim *p, struct ray r)
  * its geometry: never a hit, and a miss leaves the hit record untouched (in particular no NaN). */
 static void test_degenerate(void)
 {
-    struct prim pts = make(PRIM_TRIANGLE, v3(0.5f, 0.5f, 0), v3(0.5f, 0.5f, 0), v3(0.5f, 0.5f, 0));
-    struct prim seg = make(PRIM_TRIANGLE, v3(0, 0, 0), v3(1, 1, 0), v3(0.5f, 0.5f, 0));
-    struct prim quad = make(PRIM_QUAD, v3(0, 0, 0), v3(1, 1, 0), v3(2, 2, 0));
+    struct prim pts = test_prim(PRIM_TRIANGLE, v3(0.5f, 0.5f, 0), v3(0.5f, 0.5f, 0), v3(0.5f, 0.5f, 0));
+    struct prim seg = test_prim(PRIM_TRIANGLE, v3(0, 0, 0), v3(1, 1, 0), v3(0.5f, 0.5f, 0));
+    struct prim quad = test_prim(PRIM_QUAD, v3(0, 0, 0), v3(1, 1, 0), v3(2, 2, 0));
     struct prim zero = sphere(v3(0, 0, 0), 0.0f);
     pcg32 g;
     int i, bad = 0;
@@ -208,7 +197,7 @@ static void test_far_sphere(void)
 
 static void test_quad(void)
 {
-    struct prim p = make(PRIM_QUAD, v3(0, 0, 0), v3(2, 0, 0), v3(0, 1, 0));
+    struct prim p = test_prim(PRIM_QUAD, v3(0, 0, 0), v3(2, 0, 0), v3(0, 1, 0));
     struct hit h;
     struct surface s;
     struct ray r = ray(v3(1.5f, 0.25f, 2), v3(0, 0, -1));
@@ -224,7 +213,7 @@ static void test_quad(void)
     T_CHECK(!hit1(&p, ray(v3(1, 1.1f, 1), v3(0, 0, -1)), &h), "beyond e2");
     T_CHECK(!hit1(&p, ray(v3(-0.1f, 0.5f, 1), v3(0, 0, -1)), &h), "before the corner");
     /* A slanted parallelogram: the dual basis recovers (s, t) of a point built from them. */
-    p = make(PRIM_QUAD, v3(1, 2, 3), v3(1, 0.5f, 0.25f), v3(-0.25f, 1, 0.5f));
+    p = test_prim(PRIM_QUAD, v3(1, 2, 3), v3(1, 0.5f, 0.25f), v3(-0.25f, 1, 0.5f));
     {
         vec3 target = v3_add(v3_add(p.p[0], v3_scale(p.p[1], 0.3f)), v3_scale(p.p[2], 0.6f));
         vec3 o = v3_add(target, v3(0.5f, -1, 3));
@@ -239,7 +228,7 @@ static void test_quad(void)
 static void test_shading_normals(void)
 {
     vec3 normals[9];
-    struct prim p = make(PRIM_TRIANGLE, v3(0, 0, 0), v3(1, 0, 0), v3(0, 1, 0));
+    struct prim p = test_prim(PRIM_TRIANGLE, v3(0, 0, 0), v3(1, 0, 0), v3(0, 1, 0));
     struct ray r = ray(v3(0.25f, 0.25f, 1), v3(0, 0, -1));
     struct hit h;
     struct surface s;
@@ -361,7 +350,7 @@ static struct prim *mesh_prims(const struct mesh *m)
     struct prim *p = malloc((size_t)m->nt * sizeof *p);
     int i;
     for (i = 0; i < m->nt; i++)
-        p[i] = make(PRIM_TRIANGLE, m->v[m->tri[i][0]], m->v[m->tri[i][1]], m->v[m->tri[i][2]]);
+        p[i] = test_prim(PRIM_TRIANGLE, m->v[m->tri[i][0]], m->v[m->tri[i][1]], m->v[m->tri[i][2]]);
     return p;
 }
 
@@ -474,8 +463,8 @@ static void test_watertight(void)
 
 static void test_area_bounds(void)
 {
-    struct prim t = make(PRIM_TRIANGLE, v3(0, 0, 0), v3(1, 0, 0), v3(0, 1, 0));
-    struct prim q = make(PRIM_QUAD, v3(1, 1, 1), v3(2, 0, 0), v3(0, 3, 0));
+    struct prim t = test_prim(PRIM_TRIANGLE, v3(0, 0, 0), v3(1, 0, 0), v3(0, 1, 0));
+    struct prim q = test_prim(PRIM_QUAD, v3(1, 1, 1), v3(2, 0, 0), v3(0, 3, 0));
     struct prim s = sphere(v3(1, 2, 3), 2.0f);
     struct aabb b;
     T_NEAR(mc_prim_area(&t), 0.5, 1e-7, "triangle area");
@@ -533,8 +522,8 @@ static double var_of(double a, double b, double c)
 
 static void test_sampling(void)
 {
-    struct prim t = make(PRIM_TRIANGLE, v3(0, 0, 0), v3(3, 0, 1), v3(1, 2, 0));
-    struct prim q = make(PRIM_QUAD, v3(1, 0, 0), v3(2, 0, 0), v3(0, 0, 1));
+    struct prim t = test_prim(PRIM_TRIANGLE, v3(0, 0, 0), v3(3, 0, 1), v3(1, 2, 0));
+    struct prim q = test_prim(PRIM_QUAD, v3(1, 0, 0), v3(2, 0, 0), v3(0, 0, 1));
     struct prim s = sphere(v3(1, 2, 3), 0.5f);
     vec3 nt = v3_normalize(v3_cross(t.p[1], t.p[2]));
     pcg32 g;
