@@ -116,8 +116,9 @@ check:
 	  OPT="-O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all" \
 	  LDFLAGS="-fsanitize=address,undefined" test
 
-bench: all $(O)/tests/bench
+bench: all $(O)/tests/bench $(O)/tests/bench_render
 	$(O)/tests/bench
+	$(O)/tests/bench_render
 
 install: all
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include \

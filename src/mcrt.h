@@ -59,6 +59,10 @@ mcrt_status mcrt_scene_load_string(mcrt_scene *s, const char *text, size_t len, 
 const char *mcrt_scene_error(const mcrt_scene *s);
 /* The film size and spp the scene asks for (NULL pointers are skipped). */
 void mcrt_scene_film(const mcrt_scene *s, int *width, int *height, int *spp);
+/* What a loaded scene uses and what it costs, as `mcrt info` prints it: lines "key: value" with
+ * the features found, the sample dimensions one path draws, and the memory of the BVH and the
+ * film. Owned by s. */
+const char *mcrt_scene_info(mcrt_scene *s);
 void mcrt_scene_free(mcrt_scene *s);
 
 /* ---- Rendering ---- */
@@ -71,6 +75,9 @@ typedef struct mcrt_options {
     int threads;            /* worker threads; 0 = all cores */
     uint64_t seed;          /* the image is a function of (scene, options, seed) only */
     const char *integrator; /* "path" or "direct"; NULL = the scene's */
+    /* Nonzero: the general code path, with every feature switched on, instead of the one built
+     * for what the scene uses. The image is the same in expectation (for checks and benchmarks). */
+    int all_features;
     /* Called from worker threads after each tile with the fraction done; return nonzero to cancel.
      * Calls are serialised. NULL = none. */
     int (*progress)(void *user, double done);

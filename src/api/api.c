@@ -2,14 +2,17 @@
  * Everything here is a thin layer over the modules; nothing prints and nothing exits. */
 #include "mcrt.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
 #include "core/file.h"
+#include "geom/bvh_node.h"
 #include "integrator/integrator.h"
 #include "io/image.h"
 #include "render/render.h"
+#include "scene/features.h"
 #include "scene/scene.h"
 
 /* Largest scene file read: text beyond this is surely not a hand-written scene. */
@@ -21,6 +24,7 @@ struct mcrt_scene {
     struct scene s;
     mc_diag err;
     int loaded;
+    char info[1024];
 };
 
 struct mcrt_render {
@@ -177,6 +181,44 @@ void mcrt_render_cancel(mcrt_render *r)
         __atomic_store_n(&r->cancel, 1, __ATOMIC_RELAXED);
 }
 
+const char *mcrt_scene_info(mcrt_scene *s)
+{
+    const struct scene *sc;
+    unsigned f, bit;
+    struct sample_dims dims;
+    size_t n = 0, bvh_bytes;
+    int w;
+    if (!s)
+        return "";
+    if (!s->loaded)
+        return "no scene loaded\n";
+    sc = &s->s;
+    f = mc_scene_features(sc);
+    dims = mc_feature_dims(f, &sc->integrator);
+    bvh_bytes = (sc->bvh.node_count + sc->motion_bvh.node_count) * sizeof(struct bvh_node)
+                + sc->prim_count * sizeof *sc->prims + sc->normal_count * sizeof *sc->normals;
+    w = snprintf(s->info, sizeof s->info, "features:");
+    n = w > 0 ? (size_t)w : 0;
+    for (bit = 1; bit <= FEATURE_ALL && n < sizeof s->info; bit <<= 1)
+        if (f & bit) {
+            w = snprintf(s->info + n, sizeof s->info - n, " %s", mc_feature_name(bit));
+            n += w > 0 ? (size_t)w : 0;
+        }
+    if (n < sizeof s->info)
+        snprintf(s->info + n, sizeof s->info - n,
+                 "\nprimitives: %zu (%zu moving), lights: %zu\n"
+                 "sample dimensions: %d per camera ray, %d per bounce, %d more per bounce from "
+                 "depth %d (roulette)\n"
+                 "bvh bytes: %zu (%.1f per primitive)\n"
+                 "film bytes: %zu (%d x %d)\n",
+                 sc->prim_count, sc->prim_count - sc->static_count, sc->light_count, dims.camera,
+                 dims.per_bounce, dims.roulette, sc->integrator.rr_depth, bvh_bytes,
+                 sc->prim_count ? (double)bvh_bytes / (double)sc->prim_count : 0.0,
+                 (size_t)sc->film.width * (size_t)sc->film.height * sizeof(struct film_pixel),
+                 sc->film.width, sc->film.height);
+    return s->info;
+}
+
 static int default_threads(void)
 {
     long n = sysconf(_SC_NPROCESSORS_ONLN);
@@ -209,6 +251,7 @@ static mcrt_status settings(const mcrt_render *r, struct render_settings *rs, mc
     rs->threads = o->threads ? o->threads : default_threads();
     rs->seed = o->seed;
     rs->integrator = mc_integrator_config(&s->integrator, method);
+    rs->features = o->all_features ? FEATURE_ALL : mc_scene_features(s);
     rs->progress = o->progress;
     rs->user = o->user;
     return MCRT_OK;

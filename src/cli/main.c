@@ -18,7 +18,9 @@ enum { EXIT_OK = 0, EXIT_FAIL = 1, EXIT_USAGE = 2 };
 
 static const char usage[] =
     "usage: mcrt [render] [options] SCENE\n"
-    "Render the scene file SCENE (see mcrt(5)) and write the image.\n"
+    "       mcrt info SCENE\n"
+    "Render the scene file SCENE (see mcrt(5)) and write the image; or, with info, print the\n"
+    "features the scene uses, the sample dimensions one path draws and the memory it needs.\n"
     "\n"
     "options:\n"
     "  -o FILE             the image to write; its suffix picks the format: .png (8-bit sRGB),\n"
@@ -29,6 +31,8 @@ static const char usage[] =
     "  --seed N            random seed, 0 to 2^64-1 (default: 0); the image depends only on\n"
     "                      the scene, the options and the seed, not on the number of threads\n"
     "  --integrator NAME   path or direct (default: the scene's)\n"
+    "  --all-features      render with the general code path instead of the one built for the\n"
+    "                      features the scene uses (the same image in expectation; slower)\n"
     "  --stats FILE        write statistics as JSON (size, spp, threads, seconds, rays, NaNs)\n"
     "  --quiet             print nothing but errors\n"
     "  --help              print this help and exit\n"
@@ -241,18 +245,19 @@ static int write_stats(const char *path, const char *scene, const char *image, u
 
 /* ---- the render command ---- */
 
-enum { OPT_OUTPUT, OPT_SPP, OPT_THREADS, OPT_SEED, OPT_INTEGRATOR, OPT_STATS, OPT_QUIET, OPT_HELP,
-       OPT_VERSION, OPT_END };
+enum { OPT_OUTPUT, OPT_SPP, OPT_THREADS, OPT_SEED, OPT_INTEGRATOR, OPT_ALL_FEATURES, OPT_STATS,
+       OPT_QUIET, OPT_HELP, OPT_VERSION, OPT_END };
 static const struct arg_spec render_options[OPT_END + 1] = {
     [OPT_OUTPUT] = {NULL, 'o', 1},        [OPT_SPP] = {"spp", 0, 1},
     [OPT_THREADS] = {"threads", 0, 1},    [OPT_SEED] = {"seed", 0, 1},
-    [OPT_INTEGRATOR] = {"integrator", 0, 1}, [OPT_STATS] = {"stats", 0, 1},
+    [OPT_INTEGRATOR] = {"integrator", 0, 1}, [OPT_ALL_FEATURES] = {"all-features", 0, 0},
+    [OPT_STATS] = {"stats", 0, 1},
     [OPT_QUIET] = {"quiet", 0, 0},        [OPT_HELP] = {"help", 0, 0},
     [OPT_VERSION] = {"version", 0, 0},    [OPT_END] = {NULL, 0, 0}};
 
 struct render_args {
     const char *scene, *output, *stats, *integrator;
-    int spp, threads, quiet;
+    int spp, threads, quiet, all_features;
     uint64_t seed;
 };
 
@@ -296,6 +301,9 @@ static int parse_render_args(int argc, char **argv, struct render_args *a)
                 return EXIT_USAGE;
             }
             a->integrator = v;
+            break;
+        case OPT_ALL_FEATURES:
+            a->all_features = 1;
             break;
         case OPT_STATS:
             a->stats = v;
@@ -343,6 +351,7 @@ static int render(const struct render_args *a, const char *output)
     o.threads = a->threads;
     o.seed = a->seed;
     o.integrator = a->integrator;
+    o.all_features = a->all_features;
     if (!a->quiet && isatty(STDERR_FILENO)) {
         prog.start = now();
         prog.last_draw = 0.0;
@@ -409,13 +418,44 @@ static int cmd_render(int argc, char **argv)
     return code;
 }
 
+/* ---- the info command ---- */
+
+static int cmd_info(int argc, char **argv)
+{
+    mcrt_scene *scene;
+    mcrt_status status;
+    int code;
+    if (argc == 2 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0)) {
+        fputs(usage, stdout);
+        return fflush(stdout) == 0 ? EXIT_OK : EXIT_FAIL;
+    }
+    if (argc != 2) {
+        fprintf(stderr, "mcrt: usage: mcrt info SCENE\n");
+        return EXIT_USAGE;
+    }
+    if (!(scene = mcrt_scene_new())) {
+        fprintf(stderr, "mcrt: out of memory\n");
+        return EXIT_FAIL;
+    }
+    status = mcrt_scene_load_file(scene, argv[1]);
+    if (status != MCRT_OK) {
+        fprintf(stderr, "%s\n", mcrt_scene_error(scene));
+        code = status == MCRT_ERR_NOMEM ? EXIT_FAIL : EXIT_USAGE;
+    } else {
+        fputs(mcrt_scene_info(scene), stdout);
+        code = fflush(stdout) == 0 ? EXIT_OK : EXIT_FAIL;
+    }
+    mcrt_scene_free(scene);
+    return code;
+}
+
 /* ---- commands ---- */
 
 /* Commands by name (`mcrt NAME ...`); without one, mcrt renders. Each gets argv from its name. */
 static const struct command {
     const char *name;
     int (*run)(int argc, char **argv);
-} commands[] = {{"render", cmd_render}};
+} commands[] = {{"render", cmd_render}, {"info", cmd_info}};
 
 int main(int argc, char **argv)
 {

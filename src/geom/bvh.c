@@ -1,11 +1,13 @@
 /* bvh.c: binned-SAH BVH build (Wald 2007, "On fast Construction of SAH-based Bounding Volume
- * Hierarchies") into one depth-first array of 32-byte nodes, and single-ray traversal. */
+ * Hierarchies") into one depth-first array of 32-byte nodes, and single-ray traversal of static
+ * primitives and of moving ones (tested in their time-0 frame). */
 #include "geom/bvh.h"
 
 #include <stdlib.h>
 #include <string.h>
 
 #include "geom/bvh_node.h"
+#include "geom/motion.h"
 
 enum {
     BINS = 16,       /* SAH candidates per axis; Wald 2007 finds 16 within a few % of a full sweep */
@@ -321,7 +323,8 @@ static size_t build_nodes(struct bvh_node *nodes, struct ref *refs, uint32_t n,
     return count;
 }
 
-mcrt_status mc_bvh_build(struct bvh *b, struct prim *prims, size_t n, mc_diag *d)
+mcrt_status mc_bvh_build_bounds(struct bvh *b, struct prim *prims, const struct aabb *bounds,
+                                size_t n, mc_diag *d)
 {
     struct ref *refs;
     uint32_t *order;
@@ -342,7 +345,7 @@ mcrt_status mc_bvh_build(struct bvh *b, struct prim *prims, size_t n, mc_diag *d
         return mc_fail(d, MCRT_ERR_NOMEM, "out of memory building the BVH of %zu primitives", n);
     }
     for (i = 0; i < n; i++) {
-        struct aabb pb = mc_prim_bounds(&prims[i]);
+        struct aabb pb = bounds ? bounds[i] : mc_prim_bounds(&prims[i]);
         float c[3];
         int a;
         refs[i].lo[0] = pb.lo.x;
@@ -373,6 +376,11 @@ mcrt_status mc_bvh_build(struct bvh *b, struct prim *prims, size_t n, mc_diag *d
     permute_prims(prims, order, (uint32_t)n);
     free(refs);
     return MCRT_OK;
+}
+
+mcrt_status mc_bvh_build(struct bvh *b, struct prim *prims, size_t n, mc_diag *d)
+{
+    return mc_bvh_build_bounds(b, prims, NULL, n, d);
 }
 
 void mc_bvh_free(struct bvh *b)
@@ -417,19 +425,64 @@ static inline int slab(const float *b, const struct slab_ray *s, float tmax, flo
     return t0 <= t1 * SLAB_GROW;
 }
 
-/* Shared traversal; any_hit is a constant at each call site, so the compiler specialises it.
+/* Left to itself, GCC -O2 keeps one out-of-line traverse() (it is large) with any_hit a run-time
+ * argument; forced inlining makes any_hit and the leaf test constants of each caller's copy. */
+#if defined(__GNUC__)
+#define ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define ALWAYS_INLINE inline
+#endif
+
+/* A leaf's primitive test: mc_prim_intersect_prep's contract, with the per-ray state in ctx. */
+typedef int (*leaf_test)(void *ctx, const struct prim *p, struct hit *h);
+
+/* Static primitives: ctx is the prepared ray. */
+static ALWAYS_INLINE int test_static(void *ctx, const struct prim *p, struct hit *h)
+{
+    return mc_prim_intersect_prep(p, ctx, h);
+}
+
+/* Moving primitives are tested in their time-0 frame against the ray mapped there by the inverse
+ * of their motion at the ray's time. The map is rigid, so t along the mapped ray is the world
+ * distance and hits in different frames compare directly. Consecutive primitives of a leaf
+ * usually share a motion (the triangles of one mesh), so the mapped ray is kept until the motion
+ * changes. */
+struct moving_ray {
+    const struct motion *motions;
+    const struct ray *r;
+    unsigned motion;        /* prim.motion of the mapped ray q; 0 before the first */
+    struct ray_prep q;
+};
+
+static ALWAYS_INLINE int test_moving(void *ctx, const struct prim *p, struct hit *h)
+{
+    struct moving_ray *m = ctx;
+    if (p->motion != m->motion) {
+        struct rigid x;
+        struct ray local;
+        mc_motion_at(&m->motions[p->motion - 1], m->r->time, &x);
+        local = rigid_inv_ray(&x, m->r);
+        mc_ray_prep(&m->q, &local);
+        m->motion = p->motion;
+    }
+    return mc_prim_intersect_prep(p, &m->q, h);
+}
+
+/* Shared traversal; any_hit and leaf are constants at each call site, and the function is always
+ * inlined, so each caller gets its own specialised copy (leaf(ctx, ...) becomes a direct, inlined
+ * primitive test). The slab tests use the world ray r; leaf tests whatever ctx holds for it.
  * Both children are tested at their parent. When both are hit, the one on the near side of the
  * split plane (by the sign of the direction along the split axis) is visited first, and the other
  * is pushed with its entry distance, so that it is skipped if a closer hit is found meanwhile.
  * The ray constants and the current nearest distance live in locals (not behind pointers that the
  * primitive tests could alias), so that they stay in registers. Rays with a non-finite or zero
  * direction, or a non-finite origin, hit nothing. */
-static inline int traverse(const struct bvh *b, const struct prim *prims, const struct ray *r,
-                           struct hit *out, int any_hit)
+static ALWAYS_INLINE int traverse(const struct bvh *b, const struct prim *prims,
+                                  const struct ray *r, struct hit *out, int any_hit,
+                                  leaf_test leaf, void *ctx)
 {
     struct { uint32_t node; float t; } stack[DEPTH_MAX];
     const struct bvh_node *nodes = b->nodes;
-    struct ray_prep q;
     struct slab_ray s;
     struct hit h;
     float tmax = r->tmax, t_root;
@@ -438,7 +491,6 @@ static inline int traverse(const struct bvh *b, const struct prim *prims, const 
 
     if (b->node_count == 0 || !v3_is_finite(r->o) || !v3_is_finite(r->d) || v3_is_zero(r->d))
         return 0;
-    mc_ray_prep(&q, r);
     s.o[0] = r->o.x;
     s.o[1] = r->o.y;
     s.o[2] = r->o.z;
@@ -485,7 +537,7 @@ static inline int traverse(const struct bvh *b, const struct prim *prims, const 
         } else {
             uint32_t k, end = n->index + n->count;
             for (k = n->index; k < end; k++) {
-                if (mc_prim_intersect_prep(&prims[k], &q, &h)) {
+                if (leaf(ctx, &prims[k], &h)) {
                     if (any_hit)
                         return 1;
                     h.prim = k;
@@ -510,11 +562,39 @@ static inline int traverse(const struct bvh *b, const struct prim *prims, const 
 int mc_bvh_intersect(const struct bvh *b, const struct prim *prims, const struct ray *r,
                      struct hit *h)
 {
-    return traverse(b, prims, r, h, 0);
+    struct ray_prep q;
+    mc_ray_prep(&q, r);
+    return traverse(b, prims, r, h, 0, test_static, &q);
 }
 
 int mc_bvh_occluded(const struct bvh *b, const struct prim *prims, const struct ray *r)
 {
+    struct ray_prep q;
     struct hit h;
-    return traverse(b, prims, r, &h, 1);
+    mc_ray_prep(&q, r);
+    return traverse(b, prims, r, &h, 1, test_static, &q);
+}
+
+static void moving_ray_init(struct moving_ray *m, const struct motion *motions, const struct ray *r)
+{
+    m->motions = motions;
+    m->r = r;
+    m->motion = 0;
+}
+
+int mc_bvh_intersect_moving(const struct bvh *b, const struct prim *prims,
+                            const struct motion *motions, const struct ray *r, struct hit *h)
+{
+    struct moving_ray m;
+    moving_ray_init(&m, motions, r);
+    return traverse(b, prims, r, h, 0, test_moving, &m);
+}
+
+int mc_bvh_occluded_moving(const struct bvh *b, const struct prim *prims,
+                           const struct motion *motions, const struct ray *r)
+{
+    struct moving_ray m;
+    struct hit h;
+    moving_ray_init(&m, motions, r);
+    return traverse(b, prims, r, &h, 1, test_moving, &m);
 }

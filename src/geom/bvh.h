@@ -10,6 +10,7 @@
 #include "geom/prim.h"
 
 struct bvh_node;
+struct motion;
 
 struct bvh {
     struct bvh_node *nodes;
@@ -20,6 +21,11 @@ struct bvh {
 /* Build over prims[0..n), reordering prims in place into leaf order. n may be 0.
  * On failure (out of memory) b is left empty and the message is in d. */
 mcrt_status mc_bvh_build(struct bvh *b, struct prim *prims, size_t n, mc_diag *d);
+/* The same build with the primitives' boxes given: bounds[i] bounds prims[i] (bounds is read, not
+ * reordered). For moving primitives, bounds over the times their rays will carry. NULL: the
+ * primitives' own bounds (mc_bvh_build). */
+mcrt_status mc_bvh_build_bounds(struct bvh *b, struct prim *prims, const struct aabb *bounds,
+                                size_t n, mc_diag *d);
 void mc_bvh_free(struct bvh *b);
 
 /* Nearest hit in (0, r->tmax). Returns 1 and fills h (h->prim included) on a hit. */
@@ -27,5 +33,14 @@ int mc_bvh_intersect(const struct bvh *b, const struct prim *prims, const struct
                      struct hit *h);
 /* Whether anything is hit in (0, r->tmax); stops at the first hit found. */
 int mc_bvh_occluded(const struct bvh *b, const struct prim *prims, const struct ray *r);
+
+/* The same queries over moving primitives (every prims[i].motion >= 1, indexing motions[motion - 1])
+ * at time r->time, with b built from bounds that cover r->time. Each primitive is tested in its
+ * time-0 frame against the ray carried there, so h->t is the world distance and h->u, h->v are
+ * the primitive's own parameters; h->prim indexes prims as passed. */
+int mc_bvh_intersect_moving(const struct bvh *b, const struct prim *prims,
+                            const struct motion *motions, const struct ray *r, struct hit *h);
+int mc_bvh_occluded_moving(const struct bvh *b, const struct prim *prims,
+                           const struct motion *motions, const struct ray *r);
 
 #endif

@@ -1,5 +1,6 @@
 /* prim.c: ray intersection, bounds, area, surface geometry and area sampling of the primitives.
- * Triangles: the watertight test of Woop, Benthin and Wald, JCGT 2(1) 2013, as in pbrt-v4. */
+ * Triangles: the watertight test of Woop, Benthin and Wald, JCGT 2(1) 2013, as in pbrt-v4;
+ * disks: a plane test in double; uniform points by the concentric map (Shirley and Chiu 1997). */
 #include "geom/prim.h"
 
 #include "sample/warp.h"
@@ -163,23 +164,56 @@ static int intersect_quad(const struct prim *p, const struct ray *r, struct hit 
     return 1;
 }
 
-int mc_prim_intersect_prep(const struct prim *p, const struct ray_prep *q, struct hit *h)
+/* A disk is a plane test followed by a distance test, both in double: o − c of two floats is
+ * exact there, and so the offset w = (o − c) + t·d of the hit from the centre keeps its accuracy
+ * when the disk is tiny beside its distance from the ray origin or the ray grazes it (large t),
+ * where float would cancel most of w's digits and move the rim. */
+static int intersect_disk(const struct prim *p, const struct ray *r, struct hit *h)
+{
+    double nx = p->p[1].x, ny = p->p[1].y, nz = p->p[1].z, rad = p->p[2].x;
+    double fx = (double)r->o.x - p->p[0].x, fy = (double)r->o.y - p->p[0].y,
+           fz = (double)r->o.z - p->p[0].z;
+    double denom = nx * r->d.x + ny * r->d.y + nz * r->d.z, t, wx, wy, wz;
+    float tf;
+    if (denom == 0.0) /* the ray is parallel to the plane (or lies in it) */
+        return 0;
+    t = -(nx * fx + ny * fy + nz * fz) / denom;
+    tf = (float)t;
+    if (!accept(tf, h))
+        return 0;
+    wx = fx + t * r->d.x;
+    wy = fy + t * r->d.y;
+    wz = fz + t * r->d.z;
+    if (!(wx * wx + wy * wy + wz * wz <= rad * rad))
+        return 0;
+    h->t = tf;
+    h->u = h->v = 0.0f;
+    return 1;
+}
+
+/* The primitives whose tests need none of the per-ray constants of struct ray_prep. */
+static int intersect_plain(const struct prim *p, const struct ray *r, struct hit *h)
 {
     switch (p->kind) {
-    case PRIM_TRIANGLE:
-        return intersect_triangle(p, q, h);
     case PRIM_SPHERE:
-        return intersect_sphere(p, &q->r, h);
+        return intersect_sphere(p, r, h);
+    case PRIM_DISK:
+        return intersect_disk(p, r, h);
     default:
-        return intersect_quad(p, &q->r, h);
+        return intersect_quad(p, r, h);
     }
+}
+
+int mc_prim_intersect_prep(const struct prim *p, const struct ray_prep *q, struct hit *h)
+{
+    return p->kind == PRIM_TRIANGLE ? intersect_triangle(p, q, h) : intersect_plain(p, &q->r, h);
 }
 
 int mc_prim_intersect(const struct prim *p, const struct ray *r, struct hit *h)
 {
     struct ray_prep q;
     if (p->kind != PRIM_TRIANGLE)
-        return p->kind == PRIM_SPHERE ? intersect_sphere(p, r, h) : intersect_quad(p, r, h);
+        return intersect_plain(p, r, h);
     mc_ray_prep(&q, r);
     return intersect_triangle(p, &q, h);
 }
@@ -195,6 +229,22 @@ static struct aabb widen(struct aabb b)
     return b;
 }
 
+/* The tight box of a disk: its extent along axis i is r·sinθi, θi the angle between the normal
+ * and the axis. sin²θi is computed as (n_j² + n_k²)/|n|², which unlike 1 − n_i² does not cancel
+ * when the normal is close to the axis, in double, then rounded and widened by one ulp. */
+static struct aabb disk_bounds(const struct prim *p)
+{
+    vec3 c = p->p[0], n = p->p[1];
+    double x2 = (double)n.x * n.x, y2 = (double)n.y * n.y, z2 = (double)n.z * n.z;
+    double n2 = x2 + y2 + z2, rad = fabs((double)p->p[2].x);
+    double ex = rad * sqrt((y2 + z2) / n2), ey = rad * sqrt((x2 + z2) / n2),
+           ez = rad * sqrt((x2 + y2) / n2);
+    struct aabb b;
+    b.lo = v3((float)(c.x - ex), (float)(c.y - ey), (float)(c.z - ez));
+    b.hi = v3((float)(c.x + ex), (float)(c.y + ey), (float)(c.z + ez));
+    return widen(b);
+}
+
 struct aabb mc_prim_bounds(const struct prim *p)
 {
     struct aabb b = aabb_empty();
@@ -208,6 +258,8 @@ struct aabb mc_prim_bounds(const struct prim *p)
         b.lo = v3_sub(p->p[0], r);
         b.hi = v3_add(p->p[0], r);
         return widen(b);
+    case PRIM_DISK:
+        return disk_bounds(p);
     default:
         b = aabb_grow(b, p->p[0]);
         b = aabb_grow(b, v3_add(p->p[0], p->p[1]));
@@ -224,12 +276,14 @@ float mc_prim_area(const struct prim *p)
         return 0.5f * v3_length(v3_cross(v3_sub(p->p[1], p->p[0]), v3_sub(p->p[2], p->p[0])));
     case PRIM_SPHERE:
         return 4.0f * MC_PI * p->p[1].x * p->p[1].x;
+    case PRIM_DISK:
+        return MC_PI * p->p[2].x * p->p[2].x;
     default:
         return v3_length(v3_cross(p->p[1], p->p[2]));
     }
 }
 
-/* The unnormalised front-side normal of a triangle or quad (not used for spheres). */
+/* The unnormalised front-side normal of a triangle or quad (not used for spheres and disks). */
 static vec3 flat_normal(const struct prim *p)
 {
     if (p->kind == PRIM_TRIANGLE)
@@ -238,6 +292,20 @@ static vec3 flat_normal(const struct prim *p)
 }
 
 static vec3 flip(const struct prim *p, vec3 n) { return (p->flags & PRIM_FLIP) ? v3_neg(n) : n; }
+
+/* The hit point of a disk: the offset w = (o − c) + t·d from the centre, in double as in
+ * intersect_disk, projected onto the plane. The projection removes the error of t along the
+ * normal, the direction in which an error would put the point on the wrong side. */
+static vec3 disk_point(const struct prim *p, const struct ray *r, float t)
+{
+    double nx = p->p[1].x, ny = p->p[1].y, nz = p->p[1].z;
+    double wx = (double)r->o.x - p->p[0].x + (double)t * r->d.x,
+           wy = (double)r->o.y - p->p[0].y + (double)t * r->d.y,
+           wz = (double)r->o.z - p->p[0].z + (double)t * r->d.z;
+    double k = (nx * wx + ny * wy + nz * wz) / (nx * nx + ny * ny + nz * nz);
+    return v3((float)(p->p[0].x + (wx - k * nx)), (float)(p->p[0].y + (wy - k * ny)),
+              (float)(p->p[0].z + (wz - k * nz)));
+}
 
 void mc_prim_surface(const struct prim *p, const vec3 *normals, const struct ray *r,
                      const struct hit *h, struct surface *s)
@@ -254,6 +322,10 @@ void mc_prim_surface(const struct prim *p, const vec3 *normals, const struct ray
         /* Reprojecting o + t·d onto the sphere removes the error of t along the ray. */
         ng = v3_normalize(v3_sub(v3_madd(r->o, r->d, h->t), p->p[0]));
         s->p = v3_madd(p->p[0], ng, p->p[1].x);
+        break;
+    case PRIM_DISK:
+        s->p = disk_point(p, r, h->t);
+        ng = v3_normalize(p->p[1]);
         break;
     default:
         s->p = v3_add(v3_add(p->p[0], v3_scale(p->p[1], h->u)), v3_scale(p->p[2], h->v));
@@ -290,6 +362,14 @@ vec3 mc_prim_sample_area(const struct prim *p, vec2 u, vec3 *n)
         vec3 w = mc_warp_uniform_sphere(u);
         *n = flip(p, w);
         return v3_madd(p->p[0], w, p->p[1].x);
+    }
+    case PRIM_DISK: {
+        vec2 d = mc_warp_concentric_disk(u);
+        vec3 t, b, nd = v3_normalize(p->p[1]);
+        float r = p->p[2].x;
+        v3_basis(nd, &t, &b);
+        *n = flip(p, nd);
+        return v3_add(p->p[0], v3_add(v3_scale(t, r * d.x), v3_scale(b, r * d.y)));
     }
     default:
         q = v3_add(v3_add(p->p[0], v3_scale(p->p[1], u.x)), v3_scale(p->p[2], u.y));

@@ -1,4 +1,4 @@
-/* prim.h: the geometric primitives (triangle, sphere, quad) that live together in one BVH.
+/* prim.h: the geometric primitives (triangle, sphere, quad, disk) that live together in one BVH.
  * A primitive is a plain 64-byte value; the BVH reorders the scene's primitive array in place. */
 #ifndef MCRT_PRIM_H
 #define MCRT_PRIM_H
@@ -7,7 +7,7 @@
 
 #include "geom/ray.h"
 
-enum prim_kind { PRIM_TRIANGLE, PRIM_SPHERE, PRIM_QUAD };
+enum prim_kind { PRIM_TRIANGLE, PRIM_SPHERE, PRIM_QUAD, PRIM_DISK };
 
 enum prim_flags {
     PRIM_TWO_SIDED = 1, /* emits from both sides */
@@ -17,19 +17,20 @@ enum prim_flags {
 struct prim {
     uint8_t kind;     /* enum prim_kind */
     uint8_t flags;    /* enum prim_flags */
-    uint16_t unused;
+    uint16_t motion;  /* 0: static; k: moves by scene->motions[k - 1] (p[] hold its place at time 0) */
     int32_t material; /* index into scene->materials */
     int32_t light;    /* index into scene->lights when emitting, else -1 (set by scene prepare) */
     int32_t normals;  /* triangle: index of its 3 shading normals in scene->normals, or -1 */
     /* triangle: the vertices p[0..2]; front side along (p1-p0)×(p2-p0).
      * sphere:   p[0] the centre, p[1].x the radius; front side outward.
-     * quad:     p[0] the corner, p[1] edge1, p[2] edge2; front side along edge1×edge2. */
+     * quad:     p[0] the corner, p[1] edge1, p[2] edge2; front side along edge1×edge2.
+     * disk:     p[0] the centre, p[1] the unit normal (the front side), p[2].x the radius. */
     vec3 p[3];
     vec3 emit;        /* emitted radiance (Lambertian), zero when not an emitter */
 };
 
 /* What the BVH reports: distance, primitive index and the primitive's own 2D parameters
- * (triangle: barycentrics of p1 and p2; quad: s, t along edge1, edge2; sphere: unused). */
+ * (triangle: barycentrics of p1 and p2; quad: s, t along edge1, edge2; sphere, disk: unused). */
 struct hit {
     float t;
     uint32_t prim;

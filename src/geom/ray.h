@@ -7,11 +7,13 @@
 
 #include "core/vec.h"
 
-/* A ray o + t·d for t in (0, tmax). d need not be unit length for intersection, but the
- * integrators always pass unit directions so that t is a distance. */
+/* A ray o + t·d for t in (0, tmax) at scene time `time` (within the camera's shutter; read only
+ * by moving primitives). d need not be unit length for intersection, but the integrators always
+ * pass unit directions so that t is a distance. */
 struct ray {
     vec3 o, d;
     float tmax;
+    float time;
 };
 
 struct aabb { vec3 lo, hi; };

@@ -1,4 +1,5 @@
-/* path.c: the path tracer (see integrator.h), after pbrt-v4's PathIntegrator::Li. */
+/* path.c: the path tracer (see integrator.h), after pbrt-v4's PathIntegrator::Li, compiled once
+ * per combination of the features that change its code (scene/features.h). */
 #include "integrator/integrator.h"
 
 #include <limits.h>
@@ -17,7 +18,8 @@ struct integrator_desc mc_integrator_config(const struct integrator_desc *scene_
     return c;
 }
 
-/* Veach's power heuristic with β = 2 for the strategy with pdf a against one with pdf b. */
+/* Veach's power heuristic with β = 2 for the strategy with pdf a against one with pdf b, each pdf
+ * already multiplied by its number of samples (Veach 1997, eq. 9.13). */
 static float power_heuristic(float a, float b)
 {
     float a2 = a * a, b2 = b * b;
@@ -29,10 +31,30 @@ static float power_heuristic(float a, float b)
 /* The side of the surface a direction leaves from, for offsetting ray origins. */
 static vec3 side_normal(vec3 ng, vec3 w) { return v3_dot(w, ng) >= 0.0f ? ng : v3_neg(ng); }
 
-/* Next-event estimation at a non-delta surface: one light chosen by power, one point on it,
- * weighted against BSDF sampling. Returns the contribution before the path throughput. */
-static vec3 sample_direct(const struct scene *s, const struct surface *sf, const frame *fr,
-                          const struct bsdf *b, vec3 wo, struct sampler *smp, uint64_t *rays)
+/* Ray queries: a static scene asks the static BVH alone, and surfaces need no motion. F is a
+ * constant in every instantiation below, so these branches are resolved at compile time. */
+static inline int trace(const struct scene *s, const struct ray *r, struct hit *h, unsigned F)
+{
+    return F & FEATURE_MOTION ? mc_scene_intersect(s, r, h) : mc_bvh_intersect(&s->bvh, s->prims, r, h);
+}
+static inline int occluded(const struct scene *s, const struct ray *r, unsigned F)
+{
+    return F & FEATURE_MOTION ? mc_scene_occluded(s, r) : mc_bvh_occluded(&s->bvh, s->prims, r);
+}
+static inline void surface(const struct scene *s, const struct ray *r, const struct hit *h,
+                           struct surface *sf, unsigned F)
+{
+    if (F & FEATURE_MOTION)
+        mc_scene_surface(s, r, h, sf);
+    else
+        mc_prim_surface(&s->prims[h->prim], s->normals, r, h, sf);
+}
+
+/* One shadow ray of next-event estimation: a light chosen by power, a point on it, weighted
+ * against BSDF sampling when MIS is on. Returns the contribution before the path throughput. */
+static inline vec3 light_sample(const struct scene *s, const struct surface *sf, float time,
+                                const frame *fr, const struct bsdf *b, vec3 wo,
+                                struct sampler *smp, uint64_t *rays, int n, unsigned F)
 {
     struct light_sample ls;
     struct ray shadow;
@@ -40,13 +62,14 @@ static vec3 sample_direct(const struct scene *s, const struct surface *sf, const
     vec3 wi, f, target;
     int li = mc_alias_sample(&s->light_select, mc_sampler_1d_double(smp), &pmf);
     vec2 u = mc_sampler_2d(smp);
-    if (li < 0 || !mc_light_sample(s, &s->lights[li], sf->p, u, &ls) || v3_is_zero(ls.L))
+    if (li < 0 || !mc_light_sample(s, &s->lights[li], sf->p, time, u, &ls) || v3_is_zero(ls.L))
         return v3s(0.0f);
     wi = frame_to_local(fr, ls.wi);
     f = v3_scale(mc_bsdf_eval(b, wo, wi), fabsf(wi.z));
     if (v3_is_zero(f))
         return v3s(0.0f);
     shadow.o = ray_offset(sf->p, side_normal(sf->ng, ls.wi));
+    shadow.time = time;
     if (isinf(ls.dist)) {
         shadow.d = ls.wi;
         shadow.tmax = INFINITY;
@@ -61,25 +84,41 @@ static vec3 sample_direct(const struct scene *s, const struct surface *sf, const
         shadow.d = v3_scale(shadow.d, 1.0f / shadow.tmax);
     }
     ++*rays;
-    if (mc_bvh_occluded(&s->bvh, s->prims, &shadow))
+    if (occluded(s, &shadow, F))
         return v3s(0.0f);
     light_pdf = pmf * ls.pdf;
-    weight = ls.delta ? 1.0f : power_heuristic(light_pdf, mc_bsdf_pdf(b, wo, wi));
-    return v3_scale(v3_mul(f, ls.L), weight / light_pdf);
+    weight = !mc_features_need_mis(F) || ls.delta
+                 ? 1.0f
+                 : power_heuristic((float)n * light_pdf, mc_bsdf_pdf(b, wo, wi));
+    return v3_scale(v3_mul(f, ls.L), weight / ((float)n * light_pdf));
 }
 
-/* MIS weight of light found by BSDF sampling (pdf bsdf_pdf at the previous vertex prev_p),
- * against the light-sampling strategy that could also have produced it. */
-static float emitted_weight(const struct scene *s, int light, vec3 prev_p, float bsdf_pdf,
-                            vec3 dir, float t, const struct surface *sf)
+/* Next-event estimation at a non-delta surface: the mean of `light_samples` shadow rays. */
+static inline vec3 sample_direct(const struct scene *s, const struct integrator_desc *cfg,
+                                 const struct surface *sf, float time, const frame *fr,
+                                 const struct bsdf *b, vec3 wo, struct sampler *smp,
+                                 uint64_t *rays, unsigned F)
+{
+    vec3 L = v3s(0.0f);
+    int i, n = F & FEATURE_LIGHT_SAMPLES ? cfg->light_samples : 1;
+    for (i = 0; i < n; i++)
+        L = v3_add(L, light_sample(s, sf, time, fr, b, wo, smp, rays, n, F));
+    return L;
+}
+
+/* MIS weight of light found by BSDF sampling (pdf bsdf_pdf at the previous vertex prev_p), against
+ * the n light samples that could also have produced it. */
+static float emitted_weight(const struct scene *s, const struct integrator_desc *cfg, int light,
+                            vec3 prev_p, float bsdf_pdf, const struct ray *r, float t,
+                            const struct surface *sf)
 {
     float light_pdf = mc_alias_pmf(&s->light_select, (size_t)light)
-                      * mc_light_pdf(s, &s->lights[light], prev_p, dir, t, sf);
-    return power_heuristic(bsdf_pdf, light_pdf);
+                      * mc_light_pdf(s, &s->lights[light], prev_p, r->time, r->d, t, sf);
+    return power_heuristic(bsdf_pdf, (float)cfg->light_samples * light_pdf);
 }
 
-vec3 mc_path_radiance(const struct scene *s, const struct integrator_desc *cfg, struct ray r,
-                      struct sampler *smp, uint64_t *rays)
+static inline vec3 radiance(const struct scene *s, const struct integrator_desc *cfg, struct ray r,
+                            struct sampler *smp, uint64_t *rays, unsigned F)
 {
     vec3 L = v3s(0.0f), beta = v3s(1.0f), prev_p = r.o;
     float eta_scale = 1.0f, prev_pdf = 0.0f;
@@ -91,24 +130,28 @@ vec3 mc_path_radiance(const struct scene *s, const struct integrator_desc *cfg, 
         struct bsdf_sample bs;
         const struct prim *pr;
         frame fr;
-        vec3 Le, wo, wi;
+        vec3 wo, wi;
         h.t = r.tmax;
         ++*rays;
-        if (!mc_bvh_intersect(&s->bvh, s->prims, &r, &h)) {
-            if (s->env_light >= 0) {
+        if (!trace(s, &r, &h, F)) {
+            if (mc_features_need_mis(F) && s->env_light >= 0) {
                 float w = specular ? 1.0f
-                                   : emitted_weight(s, s->env_light, prev_p, prev_pdf, r.d,
+                                   : emitted_weight(s, cfg, s->env_light, prev_p, prev_pdf, &r,
                                                     INFINITY, NULL);
                 L = v3_add(L, v3_scale(v3_mul(beta, s->lights[s->env_light].intensity), w));
             }
             break;
         }
         pr = &s->prims[h.prim];
-        mc_prim_surface(pr, s->normals, &r, &h, &sf);
-        Le = mc_light_emitted(pr, &sf);
-        if (!v3_is_zero(Le)) {
-            float w = specular ? 1.0f : emitted_weight(s, pr->light, prev_p, prev_pdf, r.d, h.t, &sf);
-            L = v3_add(L, v3_scale(v3_mul(beta, Le), w));
+        surface(s, &r, &h, &sf, F);
+        /* Without area lights no primitive emits. */
+        if (mc_features_need_mis(F)) {
+            vec3 Le = mc_light_emitted(pr, &sf);
+            if (!v3_is_zero(Le)) {
+                float w = specular ? 1.0f
+                                   : emitted_weight(s, cfg, pr->light, prev_p, prev_pdf, &r, h.t, &sf);
+                L = v3_add(L, v3_scale(v3_mul(beta, Le), w));
+            }
         }
         if (depth == cfg->max_depth)
             break;
@@ -117,7 +160,7 @@ vec3 mc_path_radiance(const struct scene *s, const struct integrator_desc *cfg, 
         fr = frame_from_normal(sf.ns);
         wo = frame_to_local(&fr, v3_neg(r.d));
         if (!mc_bsdf_is_delta(&b))
-            L = v3_add(L, v3_mul(beta, sample_direct(s, &sf, &fr, &b, wo, smp, rays)));
+            L = v3_add(L, v3_mul(beta, sample_direct(s, cfg, &sf, r.time, &fr, &b, wo, smp, rays, F)));
 
         {
             float uc = mc_sampler_1d(smp);
@@ -151,4 +194,30 @@ vec3 mc_path_radiance(const struct scene *s, const struct integrator_desc *cfg, 
         }
     }
     return L;
+}
+
+/* The instantiations: every combination of the features that change the code. */
+#define KERNEL(name, F)                                                                         \
+    static vec3 name(const struct scene *s, const struct integrator_desc *cfg, struct ray r,   \
+                     struct sampler *smp, uint64_t *rays)                                      \
+    {                                                                                          \
+        return radiance(s, cfg, r, smp, rays, F);                                              \
+    }
+KERNEL(path_delta, 0u)
+KERNEL(path_mis, FEATURE_AREA_LIGHTS)
+KERNEL(path_mis_n, FEATURE_AREA_LIGHTS | FEATURE_LIGHT_SAMPLES)
+KERNEL(path_delta_n, FEATURE_LIGHT_SAMPLES)
+KERNEL(path_motion_delta, FEATURE_MOTION)
+KERNEL(path_motion_mis, FEATURE_MOTION | FEATURE_AREA_LIGHTS)
+KERNEL(path_motion_delta_n, FEATURE_MOTION | FEATURE_LIGHT_SAMPLES)
+KERNEL(path_general, FEATURE_ALL)
+
+mc_path_fn mc_path_kernel(unsigned features)
+{
+    unsigned key = (features & FEATURE_MOTION ? 4u : 0u) | (mc_features_need_mis(features) ? 2u : 0u)
+                   | (features & FEATURE_LIGHT_SAMPLES ? 1u : 0u);
+    static const mc_path_fn table[8] = {path_delta,        path_delta_n,        path_mis,
+                                        path_mis_n,        path_motion_delta,   path_motion_delta_n,
+                                        path_motion_mis,   path_general};
+    return table[key];
 }

@@ -1,17 +1,19 @@
 /* light.c: sampling the emitters by solid angle, their pdfs for MIS, and power-proportional
- * selection. Area lights are sampled by area (quads, triangles) converted to solid angle with
- * dist²/|cos θl|, spheres by the cone they subtend (pbrt-v4, Sphere::Sample, after Shirley and
- * Wang 1996), the constant environment uniformly over the sphere. */
+ * selection. Area lights are sampled by area (quads, disks, triangles) converted to solid angle
+ * with dist²/|cos θl|, spheres by the cone they subtend (pbrt-v4, Sphere::Sample, after Shirley
+ * and Wang 1996), the constant environment uniformly over the sphere. A moving emitter is sampled
+ * in its time-0 frame (geom/motion.h). */
 #include "light/light.h"
 
 #include "sample/warp.h"
 #include "scene/scene.h"
 
-/* Radius of a sphere bounding the scene: the environment's power is that of a disk of this radius
- * receiving its radiance (pbrt-v4, UniformInfiniteLight::Phi). */
+/* Radius of a sphere bounding the scene (moving primitives over the whole shutter): the
+ * environment's power is that of a disk of this radius receiving its radiance (pbrt-v4,
+ * UniformInfiniteLight::Phi). */
 static float scene_radius(const struct scene *s)
 {
-    struct aabb b = s->bvh.bounds;
+    struct aabb b = aabb_union(s->bvh.bounds, s->motion_bvh.bounds);
     if (!(b.hi.x >= b.lo.x))
         return 1.0f;
     return fmaxf(0.5f * v3_length(v3_sub(b.hi, b.lo)), 1e-6f);
@@ -111,7 +113,19 @@ static int sample_area(const struct prim *pr, vec3 p, vec2 u, struct light_sampl
     return isfinite(out->pdf);
 }
 
-int mc_light_sample(const struct scene *s, const struct light *l, vec3 p, vec2 u,
+/* A moving emitter's map from its time-0 frame to the world at `time` (and 1), or 0 for a static
+ * one. Rigid maps preserve distances and angles, hence solid angles: the emitter is sampled, and
+ * its pdf evaluated, in its time-0 frame with the shading point carried there, and the pdfs hold
+ * unchanged in the world. */
+static int light_frame(const struct scene *s, const struct prim *pr, float time, struct rigid *x)
+{
+    if (pr->motion == 0)
+        return 0;
+    mc_motion_at(&s->motions[pr->motion - 1], time, x);
+    return 1;
+}
+
+int mc_light_sample(const struct scene *s, const struct light *l, vec3 p, float time, vec2 u,
                     struct light_sample *out)
 {
     switch (l->kind) {
@@ -129,8 +143,19 @@ int mc_light_sample(const struct scene *s, const struct light *l, vec3 p, vec2 u
         out->delta = 1;
         return 1;
     }
-    case LIGHT_AREA:
-        return sample_area(&s->prims[l->prim], p, u, out);
+    case LIGHT_AREA: {
+        const struct prim *pr = &s->prims[l->prim];
+        struct rigid x;
+        int moving = light_frame(s, pr, time, &x);
+        if (!sample_area(pr, moving ? rigid_inv_point(&x, p) : p, u, out))
+            return 0;
+        if (moving) {
+            out->wi = rigid_vector(&x, out->wi);
+            out->point = rigid_point(&x, out->point);
+            out->normal = rigid_vector(&x, out->normal);
+        }
+        return 1;
+    }
     case LIGHT_ENVIRONMENT:
         out->wi = mc_warp_uniform_sphere(u);
         out->dist = INFINITY;
@@ -143,10 +168,11 @@ int mc_light_sample(const struct scene *s, const struct light *l, vec3 p, vec2 u
     return 0;
 }
 
-float mc_light_pdf(const struct scene *s, const struct light *l, vec3 p, vec3 wi, float t,
-                   const struct surface *sf)
+float mc_light_pdf(const struct scene *s, const struct light *l, vec3 p, float time, vec3 wi,
+                   float t, const struct surface *sf)
 {
     const struct prim *pr;
+    struct rigid x;
     float cos_l;
     switch (l->kind) {
     case LIGHT_POINT:
@@ -157,6 +183,11 @@ float mc_light_pdf(const struct scene *s, const struct light *l, vec3 p, vec3 wi
         break;
     }
     pr = &s->prims[l->prim];
+    /* The cone depends on where p is relative to the sphere: in its time-0 frame. The area pdf
+     * depends only on t and on the angle between sf->ng and wi, which are given in the world and
+     * are the same in either frame. */
+    if (pr->kind == PRIM_SPHERE && light_frame(s, pr, time, &x))
+        p = rigid_inv_point(&x, p);
     if (pr->kind == PRIM_SPHERE && sphere_cone_applies(pr, p)) {
         float sin2_max = pr->p[1].x * pr->p[1].x / v3_length2(v3_sub(p, pr->p[0]));
         float cos_max = sqrtf(fmaxf(0.0f, 1.0f - sin2_max));

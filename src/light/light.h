@@ -33,15 +33,16 @@ struct light_sample {
 
 /* Scalar power of a light (mean over RGB channels), for selection. */
 double mc_light_power(const struct scene *s, const struct light *l);
-/* Sample a direction toward l from point p. Returns 0 when there is no sample (pdf 0, or the
+/* Sample a direction toward l from point p at scene time `time` (a moving emitter is sampled where
+ * it is then). Returns 0 when there is no sample (pdf 0, or the
  * sampled point shows p its non-emitting side). */
-int mc_light_sample(const struct scene *s, const struct light *l, vec3 p, vec2 u,
+int mc_light_sample(const struct scene *s, const struct light *l, vec3 p, float time, vec2 u,
                     struct light_sample *out);
-/* Solid-angle pdf that mc_light_sample would have given direction wi from p, given that the
- * ray p + t·wi first hits light l's primitive at distance t with surface sf (area lights), or
- * escapes (environment). */
-float mc_light_pdf(const struct scene *s, const struct light *l, vec3 p, vec3 wi, float t,
-                   const struct surface *sf);
+/* Solid-angle pdf that mc_light_sample would have given direction wi from p at `time`, given that
+ * the ray p + t·wi first hits light l's primitive at distance t with surface sf (area lights; sf
+ * in world space at that time), or escapes (environment). */
+float mc_light_pdf(const struct scene *s, const struct light *l, vec3 p, float time, vec3 wi,
+                   float t, const struct surface *sf);
 /* Radiance emitted by primitive pr back along the ray that found surface sf (0 when the side the
  * ray arrived on does not emit). */
 vec3 mc_light_emitted(const struct prim *pr, const struct surface *sf);

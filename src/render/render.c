@@ -7,15 +7,22 @@
 
 #include "camera/camera.h"
 #include "integrator/integrator.h"
+#include "sample/filter.h"
 #include "sample/sampler.h"
 
 enum { TILE = 16 };
+
+struct job;
+struct worker;
+typedef void (*tile_fn)(struct job *j, int x0, int y0, int x1, int y1, struct worker *w);
 
 struct job {
     const struct scene *scene;
     const struct render_settings *rs;
     struct film *film;
     struct camera camera;
+    tile_fn tile;                     /* specialised for the scene's features */
+    mc_path_fn path;
     int tiles_x, tile_count;
     pthread_mutex_t lock;   /* guards next_tile, tiles_done and the progress callback */
     int next_tile, tiles_done;
@@ -33,30 +40,62 @@ static int cancelled(const struct job *j)
     return j->rs->cancel && __atomic_load_n(j->rs->cancel, __ATOMIC_RELAXED);
 }
 
-static void render_tile(struct job *j, int tile, struct worker *w)
+/* The samples of one pixel. F (the features that change camera rays) is a constant in each
+ * instantiation below, so a pinhole camera in a still scene draws neither lens nor time samples. */
+static inline void render_pixel(struct job *j, struct worker *w, int x, int y, unsigned F)
 {
     const struct render_settings *rs = j->rs;
+    struct film_pixel *px = &j->film->pixels[(size_t)y * (size_t)j->film->width + (size_t)x];
+    struct sampler smp;
+    int i;
+    mc_sampler_pixel(&smp, j->scene->film.sampler, rs->seed, x, y, rs->spp);
+    for (i = 0; i < rs->spp; i++) {
+        vec2 off;
+        struct ray r;
+        vec3 L;
+        mc_sampler_start(&smp, (uint32_t)i);
+        /* Filter importance sampling (Ernst et al. 2006): film points distributed as the filter
+         * around the pixel centre, every sample of weight 1. */
+        off = mc_filter_sample(j->scene->film.filter, mc_sampler_2d(&smp));
+        off.x += (float)x + 0.5f;
+        off.y += (float)y + 0.5f;
+        r = F & FEATURE_LENS ? mc_camera_ray_lens(&j->camera, off.x, off.y, mc_sampler_2d(&smp))
+                             : mc_camera_ray(&j->camera, off.x, off.y);
+        if (F & FEATURE_MOTION)
+            mc_camera_at_time(&j->camera, &r, mc_camera_time(&j->camera, mc_sampler_1d(&smp)));
+        L = j->path(j->scene, &rs->integrator, r, &smp, &w->rays);
+        if (v3_is_finite(L))
+            mc_film_add(px, L);
+        else
+            w->nans++;
+    }
+}
+
+#define TILE_KERNEL(name, F)                                                                   \
+    static void name(struct job *j, int x0, int y0, int x1, int y1, struct worker *w)          \
+    {                                                                                          \
+        int x, y;                                                                              \
+        for (y = y0; y < y1; y++)                                                              \
+            for (x = x0; x < x1; x++)                                                          \
+                render_pixel(j, w, x, y, F);                                                   \
+    }
+TILE_KERNEL(tile_pinhole, 0u)
+TILE_KERNEL(tile_lens, FEATURE_LENS)
+TILE_KERNEL(tile_pinhole_motion, FEATURE_MOTION)
+TILE_KERNEL(tile_lens_motion, FEATURE_LENS | FEATURE_MOTION)
+
+static tile_fn tile_kernel(unsigned features)
+{
+    static const tile_fn table[4] = {tile_pinhole, tile_lens, tile_pinhole_motion, tile_lens_motion};
+    return table[(features & FEATURE_LENS ? 1 : 0) | (features & FEATURE_MOTION ? 2 : 0)];
+}
+
+static void render_tile(struct job *j, int tile, struct worker *w)
+{
     int x0 = (tile % j->tiles_x) * TILE, y0 = (tile / j->tiles_x) * TILE;
     int x1 = x0 + TILE < j->film->width ? x0 + TILE : j->film->width;
     int y1 = y0 + TILE < j->film->height ? y0 + TILE : j->film->height;
-    int stratified = j->scene->film.sampler == SAMPLER_STRATIFIED;
-    int x, y, i;
-    for (y = y0; y < y1; y++) {
-        for (x = x0; x < x1; x++) {
-            struct film_pixel *px = &j->film->pixels[(size_t)y * (size_t)j->film->width + (size_t)x];
-            struct sampler smp;
-            mc_sampler_pixel(&smp, rs->seed, x, y, rs->spp, stratified);
-            for (i = 0; i < rs->spp; i++) {
-                vec2 u = mc_sampler_start(&smp, (uint32_t)i);
-                struct ray r = mc_camera_ray(&j->camera, (float)x + u.x, (float)y + u.y);
-                vec3 L = mc_path_radiance(j->scene, &rs->integrator, r, &smp, &w->rays);
-                if (v3_is_finite(L))
-                    mc_film_add(px, L);
-                else
-                    w->nans++;
-            }
-        }
-    }
+    j->tile(j, x0, y0, x1, y1, w);
 }
 
 static void *work(void *arg)
@@ -104,6 +143,8 @@ mcrt_status mc_render(const struct scene *s, const struct render_settings *rs, s
     j.rs = rs;
     j.film = f;
     mc_camera_init(&j.camera, &s->camera, f->width, f->height);
+    j.tile = tile_kernel(rs->features);
+    j.path = mc_path_kernel(rs->features);
     j.tiles_x = (f->width + TILE - 1) / TILE;
     j.tile_count = j.tiles_x * ((f->height + TILE - 1) / TILE);
     j.next_tile = j.tiles_done = 0;

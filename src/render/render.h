@@ -11,6 +11,7 @@ struct render_settings {
     int threads;                      /* >= 1 */
     uint64_t seed;
     struct integrator_desc integrator;
+    unsigned features;                /* scene/features.h: what the render is built for */
     int (*progress)(void *user, double done); /* serialised; nonzero return cancels */
     void *user;
     int *cancel;                      /* set nonzero (atomically) from anywhere to stop */

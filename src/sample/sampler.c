@@ -1,7 +1,17 @@
-/* sampler.c: per-sample random streams and stratified film positions (see sampler.h). */
+/* sampler.c: random, stratified and padded Owen-scrambled Sobol sample values (see sampler.h).
+ * References: pbrt-v4 §8.5 (StratifiedSampler), §8.7 (PaddedSobolSampler); Burley 2020, JCGT 9(4);
+ * Kensler 2013, Pixar TM 13-01. */
 #include "sample/sampler.h"
 
 #include <math.h>
+
+#include "sample/sobol.h"
+
+/* Salt separating the per-dimension keys from the per-sample stream seeds. */
+#define DIM_SALT 0x64696d656e73696fULL /* "dimensio" */
+/* splitmix64's increment, 2^64/φ (Steele, Lea and Flood 2014, "Fast Splittable Pseudorandom
+ * Number Generators"): hashing base + dim·γ gives independent keys for dimensions 0, 1, ... */
+#define GOLDEN_GAMMA 0x9e3779b97f4a7c15ULL
 
 uint32_t mc_permute(uint32_t i, uint32_t n, uint32_t key)
 {
@@ -37,26 +47,123 @@ uint32_t mc_permute(uint32_t i, uint32_t n, uint32_t key)
     return (i + key) % n;
 }
 
-void mc_sampler_pixel(struct sampler *s, uint64_t seed, int x, int y, int spp, int stratified)
+void mc_sampler_pixel(struct sampler *s, enum sampler_kind kind, uint64_t seed, int x, int y, int spp)
 {
+    s->kind = kind;
+    s->spp = spp > 1 ? (uint32_t)spp : 1u;
+    s->nx = (uint32_t)ceil(sqrt((double)s->spp));
+    s->ny = (s->spp + s->nx - 1) / s->nx;
+    s->scale[0] = 0x1p24 / s->spp;
+    s->scale[1] = 0x1p24 / s->nx;
+    s->scale[2] = 0x1p24 / s->ny;
     s->pixel_key = mc_hash3(seed, (uint64_t)(uint32_t)x, (uint64_t)(uint32_t)y);
-    s->stratified = stratified && spp > 1;
-    s->nx = (uint32_t)ceil(sqrt((double)spp));
-    s->ny = ((uint32_t)spp + s->nx - 1) / s->nx;
-    s->index = 0;
+    s->dim_base = mc_hash64(s->pixel_key ^ DIM_SALT);
+    mc_sampler_start(s, 0);
 }
 
-vec2 mc_sampler_start(struct sampler *s, uint32_t index)
+void mc_sampler_start(struct sampler *s, uint32_t index)
 {
-    vec2 u;
-    s->index = index;
+    s->index = index < s->spp ? index : index % s->spp;
+    s->dim = 0;
     pcg32_seed(&s->rng, mc_hash64(s->pixel_key ^ mc_hash64(index)), s->pixel_key);
-    u = mc_sampler_2d(s);
-    if (s->stratified) {
-        uint32_t cell = mc_permute(index % (s->nx * s->ny), s->nx * s->ny, (uint32_t)s->pixel_key);
-        /* (cell + u) / n rounds up to exactly 1 for u near 1: keep the result inside [0, 1). */
-        u.x = fminf(((float)(cell % s->nx) + u.x) / (float)s->nx, 0x1.fffffep-1f);
-        u.y = fminf(((float)(cell / s->nx) + u.y) / (float)s->ny, 0x1.fffffep-1f);
+}
+
+/* The key of the dimension about to be drawn, and the counter moved past its n dimensions. */
+static uint64_t next_key(struct sampler *s, uint32_t n)
+{
+    uint64_t key = mc_hash64(s->dim_base + s->dim * GOLDEN_GAMMA);
+    s->dim += n;
+    return key;
+}
+
+/* The stratum (of n) that this sample takes in the dimension keyed by key: Kensler's permutation
+ * of the indices, rotated by an offset drawn from the key's other half. When n exceeds spp (a 2D
+ * grid with spare cells) the samples leave some strata empty; the rotation makes each sample's
+ * stratum uniform over all n (to within n·2^-32), which keeps the estimate unbiased whichever
+ * strata are left out. */
+static uint32_t stratum(const struct sampler *s, uint32_t n, uint64_t key)
+{
+    uint32_t offset = (uint32_t)(((key >> 32) * n) >> 32);
+    uint32_t k = mc_permute(s->index, n, (uint32_t)key) + offset;
+    return k >= n ? k - n : k;
+}
+
+/* A point of stratum k of n placed by the 24-bit jitter m (scale = 2^24/n): the grid point
+ * q·2^-24 nearest below (k + m·2^-24)/n, moved back inside [k/n, (k+1)/n) when rounding put it
+ * across an edge (the tests are exact integer products, below 2^56). So the value lands in its
+ * stratum exactly and is below 1; the grid points of a stratum are equally likely to within
+ * n·2^-24. */
+static float in_stratum(uint32_t k, uint32_t n, double scale, uint32_t m)
+{
+    uint64_t q = (uint64_t)(((double)k + (double)m * 0x1p-24) * scale);
+    if (q * n < (uint64_t)k << 24)
+        q++;
+    else if (q * n >= (uint64_t)(k + 1) << 24)
+        q--;
+    /* A stratum narrower than the grid (n > 2^24) may hold no grid point; stay below 1 even then. */
+    return (float)(q < 0xffffffu ? q : 0xffffffu) * 0x1p-24f;
+}
+
+static uint32_t jitter24(struct sampler *s) { return pcg32_next(&s->rng) >> 8; }
+
+/* A 32-bit Sobol fraction as a float: its top 24 bits, so that net cells (at most 2^24 of them
+ * along an axis) are kept exactly and the value is below 1. */
+static float fraction24(uint32_t v) { return (float)(v >> 8) * 0x1p-24f; }
+
+/* Two independent 32-bit Owen seeds per dimension, from a second hash of its key. */
+static uint64_t scramble_seeds(uint64_t key) { return mc_hash64(key ^ DIM_SALT); }
+
+float mc_sampler_1d(struct sampler *s)
+{
+    uint64_t key;
+    if (s->kind == SAMPLER_RANDOM) {
+        s->dim++;
+        return pcg32_float(&s->rng);
     }
-    return u;
+    key = next_key(s, 1);
+    if (s->kind == SAMPLER_STRATIFIED)
+        return in_stratum(stratum(s, s->spp, key), s->spp, s->scale[0], jitter24(s));
+    /* The sample's index in this dimension is a permutation of [0, spp), like a stratum. */
+    return fraction24(mc_sobol_scrambled(stratum(s, s->spp, key), 0, (uint32_t)scramble_seeds(key)));
+}
+
+vec2 mc_sampler_2d(struct sampler *s)
+{
+    uint64_t key, seeds;
+    uint32_t k;
+    float a;
+    if (s->kind == SAMPLER_RANDOM) {
+        a = pcg32_float(&s->rng);
+        s->dim += 2;
+        return v2(a, pcg32_float(&s->rng));
+    }
+    key = next_key(s, 2);
+    if (s->kind == SAMPLER_STRATIFIED) {
+        k = stratum(s, s->nx * s->ny, key);
+        a = in_stratum(k % s->nx, s->nx, s->scale[1], jitter24(s));
+        return v2(a, in_stratum(k / s->nx, s->ny, s->scale[2], jitter24(s)));
+    }
+    k = stratum(s, s->spp, key);
+    seeds = scramble_seeds(key);
+    return v2(fraction24(mc_sobol_scrambled(k, 0, (uint32_t)seeds)),
+              fraction24(mc_sobol_scrambled(k, 1, (uint32_t)(seeds >> 32))));
+}
+
+double mc_sampler_1d_double(struct sampler *s)
+{
+    uint64_t key, v;
+    double d;
+    if (s->kind == SAMPLER_RANDOM) {
+        s->dim++;
+        return pcg32_double(&s->rng);
+    }
+    key = next_key(s, 1);
+    if (s->kind == SAMPLER_STRATIFIED) {
+        d = ((double)stratum(s, s->spp, key) + pcg32_double(&s->rng)) / (double)s->spp;
+        return d < 1.0 ? d : 0x1.fffffffffffffp-1;
+    }
+    /* A 32-bit index leaves digits 33 and on of a Sobol point at 0; Owen's scramble carried to
+     * those depths would make them independent uniform bits, which is what the stream supplies. */
+    v = mc_sobol_scrambled(stratum(s, s->spp, key), 0, (uint32_t)scramble_seeds(key));
+    return (double)((v << 21) | (pcg32_next(&s->rng) >> 11)) * 0x1p-53;
 }

@@ -26,6 +26,8 @@ enum vkind {
     V_REAL,      /* one number x with lo < x < hi */
     V_INT,       /* one integer in [lo, hi] */
     V_POINT,     /* three numbers (a point or a vector) */
+    V_PAIR,      /* two numbers */
+    V_SPIN,      /* four numbers: an axis and an angle in degrees (not a transform step) */
     V_RGB,       /* one number (grey) or three, none negative */
     V_ALBEDO,    /* V_RGB at most 1: a surface reflecting more than arrives would create energy */
     V_ALBEDO_OR_NONE, /* V_ALBEDO, or no number at all (metal: then 'eta' and 'k' say it) */
@@ -263,7 +265,10 @@ static void check_count(struct parser *p, const struct block *b, const struct ke
 {
     int one_or_three = k->kind == V_RGB || k->kind == V_ALBEDO || k->kind == V_SCALE
                        || k->kind == V_ALBEDO_OR_NONE;
-    int want = k->kind == V_POINT || k->kind == V_TRANSLATE ? 3 : k->kind == V_ROTATE ? 4 : 1;
+    int want = k->kind == V_POINT || k->kind == V_TRANSLATE       ? 3
+               : k->kind == V_ROTATE || k->kind == V_SPIN ? 4
+               : k->kind == V_PAIR                        ? 2
+                                                          : 1;
     if (one_or_three ? v->n == 1 || v->n == 3 || (v->n == 0 && k->kind == V_ALBEDO_OR_NONE)
                      : v->n == want)
         return;
@@ -274,7 +279,7 @@ static void check_count(struct parser *p, const struct block *b, const struct ke
              k->name, v->n);
     if (one_or_three)
         fail(p, &v->key, "'%s' needs 1 or 3 numbers, found %d", k->name, v->n);
-    if (k->kind == V_ROTATE)
+    if (k->kind == V_ROTATE || k->kind == V_SPIN)
         fail(p, &v->key, "'%s' needs 4 numbers (an axis and an angle in degrees), found %d",
              k->name, v->n);
     fail(p, &v->key, "'%s' needs %d number%s, found %d", k->name, want, want == 1 ? "" : "s", v->n);
@@ -283,6 +288,12 @@ static void check_count(struct parser *p, const struct block *b, const struct ke
 static vec3 vec_of(const struct value *v)
 {
     return v->n == 1 ? v3s((float)v->x[0]) : v3((float)v->x[0], (float)v->x[1], (float)v->x[2]);
+}
+
+/* The value of key k, or the default when it was not given. */
+static vec3 vec_or(const struct block *b, int k, vec3 def)
+{
+    return b->v[k].set ? vec_of(&b->v[k]) : def;
 }
 
 /* ---- Mesh transforms ---- */
@@ -501,8 +512,8 @@ static const struct token *latest(const struct block *b, int n, const int *keys)
 
 /* ---- Blocks ---- */
 
-static const char *const sampler_names[] = {"random", "stratified", NULL};
-static const char *const filter_names[] = {"box", NULL};
+static const char *const sampler_names[] = {"random", "stratified", "sobol", NULL};
+static const char *const filter_names[] = {"box", "tent", "gaussian", NULL};
 static const char *const method_names[] = {"path", "direct", NULL};
 
 enum { FILM_WIDTH, FILM_HEIGHT, FILM_SPP, FILM_SAMPLER, FILM_FILTER };
@@ -533,12 +544,18 @@ static void finish_film(struct parser *p, struct block *b)
              "pixels)", f->width, f->height);
 }
 
-enum { CAM_EYE, CAM_LOOK, CAM_UP, CAM_FOV };
+enum { CAM_EYE, CAM_LOOK, CAM_UP, CAM_FOV, CAM_LENS_RADIUS, CAM_FOCUS_DISTANCE, CAM_SHUTTER,
+       CAM_MOVE };
 static const struct key camera_keys[] = {
     {"eye", V_POINT, 0, 0, NULL, NULL, NULL},
     {"look", V_POINT, 0, 0, NULL, NULL, NULL},
     {"up", V_POINT, 0, 0, NULL, NULL, NULL},
     {"fov", V_REAL, 0, 180, "must be between 0 and 180 degrees", NULL, NULL},
+    /* Every negative float is below -DBL_MIN, so this admits exactly the non-negative radii. */
+    {"lens_radius", V_REAL, -DBL_MIN, INFINITY, "must not be negative", NULL, NULL},
+    {"focus_distance", V_REAL, 0, INFINITY, "must be positive", NULL, NULL},
+    {"shutter", V_PAIR, 0, 0, NULL, NULL, NULL},
+    {"move", V_POINT, 0, 0, NULL, NULL, NULL},
 };
 
 static void finish_camera(struct parser *p, struct block *b)
@@ -554,6 +571,19 @@ static void finish_camera(struct parser *p, struct block *b)
         c->up = vec_of(&b->v[CAM_UP]);
     if (b->v[CAM_FOV].set)
         c->fov = (float)b->v[CAM_FOV].x[0];
+    if (b->v[CAM_LENS_RADIUS].set)
+        c->lens_radius = (float)b->v[CAM_LENS_RADIUS].x[0];
+    if (b->v[CAM_FOCUS_DISTANCE].set)
+        c->focus_distance = (float)b->v[CAM_FOCUS_DISTANCE].x[0];
+    c->move = vec_or(b, CAM_MOVE, c->move);
+    if (b->v[CAM_SHUTTER].set) {
+        const struct value *v = &b->v[CAM_SHUTTER];
+        if (!(v->x[1] >= v->x[0]))
+            fail(p, &v->at[1], "camera 'shutter' closes (at %g) before it opens (at %g)", v->x[1],
+                 v->x[0]);
+        c->shutter[0] = (float)v->x[0];
+        c->shutter[1] = (float)v->x[1];
+    }
     /* The camera normalises look - eye and up in float: both lengths must be usable there. */
     dist2 = v3_length2(v3_sub(c->look, c->eye));
     if (!(dist2 > 0.0f))
@@ -567,11 +597,12 @@ static void finish_camera(struct parser *p, struct block *b)
              "'look'");
 }
 
-enum { INT_METHOD, INT_MAX_DEPTH, INT_RR_DEPTH };
+enum { INT_METHOD, INT_MAX_DEPTH, INT_RR_DEPTH, INT_LIGHT_SAMPLES };
 static const struct key integrator_keys[] = {
     {"method", V_CHOICE, 0, 0, NULL, method_names, NULL},
     {"max_depth", V_INT, 0, 65536, NULL, NULL, NULL},
     {"rr_depth", V_INT, 0, 65536, NULL, NULL, NULL},
+    {"light_samples", V_INT, 1, 1024, NULL, NULL, NULL},
 };
 
 static void finish_integrator(struct parser *p, struct block *b)
@@ -583,6 +614,8 @@ static void finish_integrator(struct parser *p, struct block *b)
         it->max_depth = (int)b->v[INT_MAX_DEPTH].at[0].num;
     if (b->v[INT_RR_DEPTH].set)
         it->rr_depth = (int)b->v[INT_RR_DEPTH].at[0].num;
+    if (b->v[INT_LIGHT_SAMPLES].set)
+        it->light_samples = (int)b->v[INT_LIGHT_SAMPLES].at[0].num;
 }
 
 /* The first five keys are the material's kind: exactly one is given. */
@@ -697,11 +730,12 @@ static void finish_material(struct parser *p, struct block *b)
         fail_nomem(p);
 }
 
-/* Every shape takes these first four keys. */
+/* Every shape takes these first five keys. */
 #define SHAPE_KEYS                                                                             \
     {"material", V_NAME, 0, 0, NULL, NULL, NULL}, {"emit", V_RGB, 0, 0, NULL, NULL, NULL},     \
-    {"two_sided", V_FLAG, 0, 0, NULL, NULL, NULL}, {"flip", V_FLAG, 0, 0, NULL, NULL, NULL}
-enum { SHAPE_MATERIAL, SHAPE_EMIT, SHAPE_TWO_SIDED, SHAPE_FLIP, SHAPE_KEYS_END };
+    {"two_sided", V_FLAG, 0, 0, NULL, NULL, NULL}, {"flip", V_FLAG, 0, 0, NULL, NULL, NULL},  \
+    {"move", V_POINT, 0, 0, NULL, NULL, NULL}
+enum { SHAPE_MATERIAL, SHAPE_EMIT, SHAPE_TWO_SIDED, SHAPE_FLIP, SHAPE_MOVE, SHAPE_KEYS_END };
 
 /* The primitive fields every shape sets the same way; the material is resolved at the end. */
 static struct prim shape_proto(const struct block *b)
@@ -731,18 +765,47 @@ static void note_material(struct parser *p, const struct block *b, size_t first)
     r->last = p->s->prim_count;
 }
 
+/* A shape that moves (a nonzero `move`, or a mesh's nonzero `spin` about the centre of its bounding
+ * box) gets one motion shared by its primitives [first, scene count). A zero motion is no motion,
+ * so that such a scene is as static, and renders exactly as, the scene without the key. */
+static void note_motion(struct parser *p, const struct block *b, size_t first,
+                        const struct value *spin)
+{
+    struct motion m;
+    size_t i;
+    int idx;
+    memset(&m, 0, sizeof m);
+    m.move = vec_or(b, SHAPE_MOVE, v3s(0.0f));
+    m.axis = v3(0.0f, 1.0f, 0.0f);
+    if (spin && spin->set && spin->x[3] != 0.0) {
+        double l = sqrt(spin->x[0] * spin->x[0] + spin->x[1] * spin->x[1] + spin->x[2] * spin->x[2]);
+        struct aabb box = aabb_empty();
+        if (!(l > 0.0))
+            fail(p, &spin->key, "'spin' axis has zero length");
+        m.axis = v3((float)(spin->x[0] / l), (float)(spin->x[1] / l), (float)(spin->x[2] / l));
+        m.omega = (float)(spin->x[3] * (3.14159265358979323846 / 180.0));
+        for (i = first; i < p->s->prim_count; i++)
+            box = aabb_union(box, mc_prim_bounds(&p->s->prims[i]));
+        m.center = aabb_center(box);
+    }
+    if (v3_is_zero(m.move) && m.omega == 0.0f)
+        return;
+    idx = mc_scene_add_motion(p->s, &m);
+    if (idx < 0 && p->s->motion_count >= 65535)
+        fail(p, &b->head, "too many moving shapes (the limit is 65535)");
+    if (idx < 0)
+        fail_nomem(p);
+    for (i = first; i < p->s->prim_count; i++)
+        p->s->prims[i].motion = (uint16_t)(idx + 1);
+}
+
 static void add_shape(struct parser *p, const struct block *b, const struct prim *pr)
 {
     size_t first = p->s->prim_count;
     if (mc_scene_add_prim(p->s, pr) < 0)
         fail_nomem(p);
     note_material(p, b, first);
-}
-
-/* The value of key k, or the default when it was not given. */
-static vec3 vec_or(const struct block *b, int k, vec3 def)
-{
-    return b->v[k].set ? vec_of(&b->v[k]) : def;
+    note_motion(p, b, first, NULL);
 }
 
 enum { SPHERE_CENTER = SHAPE_KEYS_END, SPHERE_RADIUS };
@@ -787,6 +850,32 @@ static void finish_quad(struct parser *p, struct block *b)
     add_shape(p, b, &pr);
 }
 
+enum { DISK_CENTER = SHAPE_KEYS_END, DISK_NORMAL, DISK_RADIUS };
+static const struct key disk_keys[] = {
+    SHAPE_KEYS,
+    {"center", V_POINT, 0, 0, NULL, NULL, NULL},
+    {"normal", V_POINT, 0, 0, NULL, NULL, NULL},
+    {"radius", V_REAL, 0, INFINITY, "must be positive", NULL, NULL},
+};
+
+/* Default: the unit disk at the origin facing +z, like the quad and the triangle. */
+static void finish_disk(struct parser *p, struct block *b)
+{
+    struct prim pr = shape_proto(b);
+    pr.kind = PRIM_DISK;
+    pr.p[0] = vec_or(b, DISK_CENTER, v3s(0.0f));
+    pr.p[1] = v3(0.0f, 0.0f, 1.0f);
+    if (b->v[DISK_NORMAL].set) {
+        const double *x = b->v[DISK_NORMAL].x;
+        double l = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+        if (!(l > 0.0))
+            fail(p, &b->v[DISK_NORMAL].key, "disk 'normal' has zero length");
+        pr.p[1] = v3((float)(x[0] / l), (float)(x[1] / l), (float)(x[2] / l));
+    }
+    pr.p[2] = v3(b->v[DISK_RADIUS].set ? (float)b->v[DISK_RADIUS].x[0] : 1.0f, 0.0f, 0.0f);
+    add_shape(p, b, &pr);
+}
+
 enum { TRI_V0 = SHAPE_KEYS_END, TRI_V1, TRI_V2 };
 static const struct key triangle_keys[] = {
     SHAPE_KEYS,
@@ -809,13 +898,14 @@ static void finish_triangle(struct parser *p, struct block *b)
     add_shape(p, b, &pr);
 }
 
-enum { MESH_FILE = SHAPE_KEYS_END, MESH_SCALE, MESH_ROTATE, MESH_TRANSLATE };
+enum { MESH_FILE = SHAPE_KEYS_END, MESH_SCALE, MESH_ROTATE, MESH_TRANSLATE, MESH_SPIN };
 static const struct key mesh_keys[] = {
     SHAPE_KEYS,
     {"file", V_PATH, 0, 0, NULL, NULL, NULL},
     {"scale", V_SCALE, 0, 0, NULL, NULL, NULL},
     {"rotate", V_ROTATE, 0, 0, NULL, NULL, NULL},
     {"translate", V_TRANSLATE, 0, 0, NULL, NULL, NULL},
+    {"spin", V_SPIN, 0, 0, NULL, NULL, NULL},
 };
 
 /* The OBJ path: as written when absolute or when there is no base directory, else under it. */
@@ -826,7 +916,8 @@ static char *mesh_path(struct parser *p, const struct token *file)
     char *path = malloc(nb + (size_t)slash + file->len + 1);
     if (!path)
         fail_nomem(p);
-    memcpy(path, p->base_dir, nb);
+    if (nb)
+        memcpy(path, p->base_dir, nb);
     if (slash)
         path[nb] = '/';
     memcpy(path + nb + slash, file->text, file->len);
@@ -855,6 +946,7 @@ static void finish_mesh(struct parser *p, struct block *b)
     if (st)
         throw(p, st);
     note_material(p, b, first);
+    note_motion(p, b, first, &b->v[MESH_SPIN]);
 }
 
 enum { POINT_POSITION, POINT_INTENSITY };
@@ -895,6 +987,7 @@ static const struct block_kind block_kinds[] = {
     {"material", KEYS(material_keys), 0, 1, finish_material},
     {"sphere", KEYS(sphere_keys), 0, 0, finish_sphere},
     {"quad", KEYS(quad_keys), 0, 0, finish_quad},
+    {"disk", KEYS(disk_keys), 0, 0, finish_disk},
     {"triangle", KEYS(triangle_keys), 0, 0, finish_triangle},
     {"mesh", KEYS(mesh_keys), 0, 0, finish_mesh},
     {"point_light", KEYS(point_light_keys), 0, 0, finish_point_light},

@@ -1,9 +1,62 @@
-/* prepare.c: turns a parsed scene into a renderable one: the BVH over all primitives, one area
- * light per emitting primitive, the environment (the default white sky when nothing emits), and
- * the alias table that picks lights in proportion to power. */
+/* prepare.c: turns a parsed scene into a renderable one: static primitives first with their BVH,
+ * then the moving ones with a second BVH bounded over the shutter, one area light per emitting
+ * primitive, the environment (the default white sky when nothing emits), and the alias table that
+ * picks lights in proportion to power. */
 #include "scene/scene.h"
 
 #include <stdlib.h>
+#include <string.h>
+
+/* Move the moving primitives behind the static ones, keeping the order within each group, and set
+ * s->static_count. A static scene is left untouched, so its BVH is built exactly as without
+ * motion. */
+static mcrt_status partition(struct scene *s, mc_diag *d)
+{
+    size_t i, n_static = 0, n_moving = 0;
+    struct prim *moving;
+    for (i = 0; i < s->prim_count; i++) {
+        if (s->prims[i].motion > s->motion_count)
+            return mc_fail(d, MCRT_ERR_INVALID, "primitive %zu has motion %u of %zu", i,
+                           (unsigned)s->prims[i].motion, s->motion_count);
+        n_moving += s->prims[i].motion != 0;
+    }
+    s->static_count = s->prim_count - n_moving;
+    if (n_moving == 0)
+        return MCRT_OK;
+    moving = malloc(n_moving * sizeof *moving);
+    if (!moving)
+        return mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
+    n_moving = 0;
+    for (i = 0; i < s->prim_count; i++) {
+        if (s->prims[i].motion)
+            moving[n_moving++] = s->prims[i];
+        else
+            s->prims[n_static++] = s->prims[i];
+    }
+    memcpy(s->prims + n_static, moving, n_moving * sizeof *moving);
+    free(moving);
+    return MCRT_OK;
+}
+
+/* The BVH of the moving primitives, each bounded over the whole shutter. */
+static mcrt_status build_motion_bvh(struct scene *s, mc_diag *d)
+{
+    struct prim *prims = s->prims + s->static_count;
+    size_t i, n = s->prim_count - s->static_count;
+    struct aabb *bounds;
+    mcrt_status st;
+    if (n == 0) /* still built, empty, so that its bounds read as empty (light.c) */
+        return mc_bvh_build(&s->motion_bvh, prims, 0, d);
+    bounds = malloc(n * sizeof *bounds);
+    if (!bounds)
+        return mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
+    for (i = 0; i < n; i++)
+        bounds[i] = mc_motion_bounds(&s->motions[prims[i].motion - 1], mc_prim_bounds(&prims[i]),
+                                     s->camera.shutter[0], s->camera.shutter[1]);
+    st = mc_bvh_build_bounds(&s->motion_bvh, prims, bounds, n, d);
+    free(bounds);
+    return st;
+}
 
 mcrt_status mc_scene_prepare(struct scene *s, mc_diag *d)
 {
@@ -16,7 +69,12 @@ mcrt_status mc_scene_prepare(struct scene *s, mc_diag *d)
         return MCRT_OK;
     if (s->material_count == 0)
         return mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
-    st = mc_bvh_build(&s->bvh, s->prims, s->prim_count, d);
+    /* Both builds reorder primitives, so lights (which index them) are made after. */
+    st = partition(s, d);
+    if (st == MCRT_OK)
+        st = mc_bvh_build(&s->bvh, s->prims, s->static_count, d);
+    if (st == MCRT_OK)
+        st = build_motion_bvh(s, d);
     if (st != MCRT_OK)
         return st;
     has_light = s->light_count > 0 || s->has_environment;

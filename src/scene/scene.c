@@ -20,6 +20,8 @@ void mc_scene_init(struct scene *s)
     s->integrator.method = INTEGRATOR_PATH;
     s->integrator.max_depth = -1;
     s->integrator.rr_depth = 5;
+    s->integrator.light_samples = 1;
+    s->camera.shutter[1] = 1.0f;
     s->env_light = -1;
     memset(&def, 0, sizeof def);
     def.kind = MATERIAL_DIFFUSE;
@@ -31,11 +33,13 @@ void mc_scene_init(struct scene *s)
 void mc_scene_free(struct scene *s)
 {
     mc_bvh_free(&s->bvh);
+    mc_bvh_free(&s->motion_bvh);
     mc_alias_free(&s->light_select);
     free(s->materials);
     free(s->prims);
     free(s->normals);
     free(s->lights);
+    free(s->motions);
     memset(s, 0, sizeof *s);
 }
 
@@ -88,4 +92,11 @@ int mc_scene_find_material(const struct scene *s, const char *name)
         if (strcmp(s->materials[i].name, name) == 0)
             return (int)i;
     return -1;
+}
+
+int mc_scene_add_motion(struct scene *s, const struct motion *m)
+{
+    if (s->motion_count >= 65535)
+        return -1;
+    return push((void **)&s->motions, &s->motion_count, &s->motion_cap, sizeof *m, m);
 }

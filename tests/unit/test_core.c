@@ -118,25 +118,31 @@ static void test_sampler(void)
     struct sampler s;
     int counts[64], i, spp;
     vec2 u0, again;
-    mc_sampler_pixel(&s, 9, 5, 7, 64, 1);
+    mc_sampler_pixel(&s, SAMPLER_STRATIFIED, 9, 5, 7, 64);
     memset(counts, 0, sizeof counts);
     for (i = 0; i < 64; i++) {
-        vec2 u = mc_sampler_start(&s, (uint32_t)i);
+        vec2 u;
+        mc_sampler_start(&s, (uint32_t)i);
+        u = mc_sampler_2d(&s);
         counts[(int)(u.y * 8) * 8 + (int)(u.x * 8)]++;
     }
     for (i = 0; i < 64 && counts[i] == 1; i++)
         ;
     T_CHECK(i == 64, "cell %d has %d samples", i, i < 64 ? counts[i] : 0);
-    u0 = mc_sampler_start(&s, 17);
+    mc_sampler_start(&s, 17);
+    u0 = mc_sampler_2d(&s);
     (void)mc_sampler_1d(&s);
-    mc_sampler_pixel(&s, 9, 5, 7, 64, 1);
-    again = mc_sampler_start(&s, 17);
+    mc_sampler_pixel(&s, SAMPLER_STRATIFIED, 9, 5, 7, 64);
+    mc_sampler_start(&s, 17);
+    again = mc_sampler_2d(&s);
     T_CHECK(u0.x == again.x && u0.y == again.y, "sample 17 regenerated differently");
     for (spp = 1; spp <= 40; spp++) {
         int out = 0;
-        mc_sampler_pixel(&s, 1, 0, 0, spp, 1);
+        mc_sampler_pixel(&s, SAMPLER_STRATIFIED, 1, 0, 0, spp);
         for (i = 0; i < spp; i++) {
-            vec2 u = mc_sampler_start(&s, (uint32_t)i);
+            vec2 u;
+            mc_sampler_start(&s, (uint32_t)i);
+            u = mc_sampler_2d(&s);
             out += !(u.x >= 0 && u.x < 1 && u.y >= 0 && u.y < 1);
         }
         if (out) {
@@ -187,6 +193,8 @@ static void test_camera(void)
     struct ray r;
     float t = tanf(20.0f * MC_PI / 180.0f);
     vec3 want;
+    memset(&d, 0, sizeof d); /* a still pinhole: no lens, no motion */
+    d.shutter[1] = 1.0f;
     d.eye = v3(1, 2, 3);
     d.look = v3(1, 2, -7);
     d.up = v3(0, 1, 0);

@@ -246,6 +246,52 @@ static void test_mesh_transform(void)
     mc_scene_free(&s);
 }
 
+/* The keys of distributed effects: values as given, zero motion is no motion, one motion shared by
+ * a mesh's triangles and spinning about its bounding-box centre. */
+static void test_distributed_keys(void)
+{
+    struct scene s;
+    mc_diag d;
+    char path[128];
+    tmp_path(path, sizeof path, "spin.obj");
+    write_file(path, "v 0 0 0\nv 2 0 0\nv 0 4 0\nv 2 4 6\nf 1 2 3\nf 2 4 3\n");
+    T_CHECK(load_mesh(&s, "film { sampler sobol filter gaussian }\n"
+                          "camera { lens_radius 0.25 focus_distance 7 shutter 0.5 2 move 1 0 0 }\n"
+                          "integrator { light_samples 3 }\n"
+                          "disk { center 1 2 3 normal 0 -2 0 radius 0.5 emit 4 }\n"
+                          "sphere { move 0 0 0 }\n"
+                          "quad { move 0 1 0 }\n"
+                          "mesh { file \"spin.obj\" spin 0 2 0 90 move 0 0 1 }\n"
+                          "mesh { file \"spin.obj\" spin 0 1 0 0 }\n",
+                      &d) == MCRT_OK,
+            "%s", d.msg);
+    T_CHECK(s.film.sampler == SAMPLER_SOBOL && s.film.filter == FILTER_GAUSSIAN, "film keys");
+    T_CHECK(s.camera.lens_radius == 0.25f && s.camera.focus_distance == 7.0f
+                && s.camera.shutter[0] == 0.5f && s.camera.shutter[1] == 2.0f
+                && near3(s.camera.move, 1, 0, 0),
+            "camera keys");
+    T_CHECK(s.integrator.light_samples == 3, "light_samples %d", s.integrator.light_samples);
+    T_CHECK(s.prim_count == 7 && s.motion_count == 2, "%zu prims, %zu motions", s.prim_count,
+            s.motion_count);
+    if (s.prim_count == 7 && s.motion_count == 2) {
+        const struct motion *spin = &s.motions[1];
+        T_CHECK(s.prims[0].kind == PRIM_DISK && near3(s.prims[0].p[0], 1, 2, 3)
+                    && near3(s.prims[0].p[1], 0, -1, 0) && s.prims[0].p[2].x == 0.5f,
+                "disk: centre, unit normal, radius");
+        T_CHECK(s.prims[1].motion == 0, "'move 0 0 0' is static");
+        T_CHECK(s.prims[2].motion == 1 && near3(s.motions[0].move, 0, 1, 0)
+                    && s.motions[0].omega == 0.0f,
+                "moving quad");
+        T_CHECK(s.prims[3].motion == 2 && s.prims[4].motion == 2, "one motion per mesh");
+        T_CHECK(near3(spin->center, 1, 2, 3) && near3(spin->axis, 0, 1, 0)
+                    && fabsf(spin->omega - 1.5707963f) < 1e-6f && near3(spin->move, 0, 0, 1),
+                "spin about the box centre: (%g %g %g)", (double)spin->center.x,
+                (double)spin->center.y, (double)spin->center.z);
+        T_CHECK(s.prims[5].motion == 0 && s.prims[6].motion == 0, "'spin' by 0 degrees is static");
+    }
+    mc_scene_free(&s);
+}
+
 /* A mirroring transform keeps the front side where the winding and the normals put it. */
 static void test_mesh_mirror(void)
 {
@@ -636,6 +682,7 @@ int main(void)
     test_layout();
     test_material_order();
     test_mesh_transform();
+    test_distributed_keys();
     test_mesh_mirror();
     test_mesh_faces();
     test_obj_stats();

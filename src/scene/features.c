@@ -1,0 +1,61 @@
+/* features.c: the features a prepared scene uses (see features.h). */
+#include "scene/features.h"
+
+#include "bsdf/bsdf.h"
+
+/* The lobes of a material that some primitive uses. */
+static unsigned material_features(const struct material *m)
+{
+    if (m->kind == MATERIAL_DIFFUSE)
+        return 0;
+    if (m->kind == MATERIAL_MIRROR || m->alpha < MC_BSDF_SMOOTH_ALPHA)
+        return FEATURE_SPECULAR;
+    return FEATURE_GLOSSY;
+}
+
+unsigned mc_scene_features(const struct scene *s)
+{
+    unsigned f = 0;
+    size_t i;
+    if (s->camera.lens_radius > 0.0f)
+        f |= FEATURE_LENS;
+    if (s->motion_count > 0 || !v3_is_zero(s->camera.move))
+        f |= FEATURE_MOTION;
+    if (s->integrator.light_samples > 1)
+        f |= FEATURE_LIGHT_SAMPLES;
+    for (i = 0; i < s->light_count; i++)
+        f |= s->lights[i].kind == LIGHT_POINT  ? FEATURE_DELTA_LIGHTS
+             : s->lights[i].kind == LIGHT_AREA ? FEATURE_AREA_LIGHTS
+                                               : FEATURE_ENVIRONMENT;
+    for (i = 0; i < s->prim_count; i++) {
+        f |= material_features(&s->materials[s->prims[i].material]);
+        if (s->prims[i].kind == PRIM_TRIANGLE)
+            f |= FEATURE_MESHES;
+    }
+    return f;
+}
+
+const char *mc_feature_name(unsigned bit)
+{
+    switch (bit) {
+    case FEATURE_LENS: return "lens";
+    case FEATURE_MOTION: return "motion";
+    case FEATURE_AREA_LIGHTS: return "area_lights";
+    case FEATURE_DELTA_LIGHTS: return "delta_lights";
+    case FEATURE_ENVIRONMENT: return "environment";
+    case FEATURE_GLOSSY: return "glossy";
+    case FEATURE_SPECULAR: return "specular";
+    case FEATURE_MESHES: return "meshes";
+    case FEATURE_LIGHT_SAMPLES: return "light_samples";
+    default: return "?";
+    }
+}
+
+struct sample_dims mc_feature_dims(unsigned features, const struct integrator_desc *it)
+{
+    struct sample_dims d;
+    d.camera = 2 + (features & FEATURE_LENS ? 2 : 0) + (features & FEATURE_MOTION ? 1 : 0);
+    d.per_bounce = 3 * it->light_samples + 3;
+    d.roulette = 1;
+    return d;
+}
