@@ -53,6 +53,30 @@ struct chi2_result {
 };
 
 #define CHI2_PI 3.14159265358979323846
+
+/* A test on the unit square with n × n cells; the caller sets samples, seed and tests as needed. */
+static inline struct chi2_spec chi2_unit_spec(const char *name, chi2_sample_fn sample,
+                                              chi2_density_fn density, void *ctx, int n)
+{
+    struct chi2_spec s;
+    memset(&s, 0, sizeof s);
+    s.name = name;
+    s.sample = sample;
+    s.density = density;
+    s.ctx = ctx;
+    s.x1 = s.y1 = 1.0;
+    s.nx = s.ny = n;
+    return s;
+}
+
+/* The density of a uniform distribution on the unit square, for samplers tested on [0,1)². */
+static inline double chi2_unit_density(void *ctx, double x, double y)
+{
+    (void)ctx;
+    (void)x;
+    (void)y;
+    return 1.0;
+}
 #define CHI2_SIGNIFICANCE 0.01
 #define CHI2_MIN_EXPECTED 5.0
 /* pbrt-v4's allowance for round-off placing a sample just across a zero-density boundary. */

@@ -296,6 +296,16 @@ static vec3 vec_or(const struct block *b, int k, vec3 def)
     return b->v[k].set ? vec_of(&b->v[k]) : def;
 }
 
+/* The first three numbers of v as a unit vector, normalised in double (the float square of a tiny
+ * axis would underflow to zero); a zero vector fails with "WHAT has zero length" at v's key. */
+static vec3 unit_of(struct parser *p, const struct value *v, const char *what)
+{
+    double l = sqrt(v->x[0] * v->x[0] + v->x[1] * v->x[1] + v->x[2] * v->x[2]);
+    if (!(l > 0.0))
+        fail(p, &v->key, "%s has zero length", what);
+    return v3((float)(v->x[0] / l), (float)(v->x[1] / l), (float)(v->x[2] / l));
+}
+
 /* ---- Mesh transforms ---- */
 
 /* xf = s·xf for the affine maps s and xf (row-major 3x4): s is applied after what is there. */
@@ -778,11 +788,8 @@ static void note_motion(struct parser *p, const struct block *b, size_t first,
     m.move = vec_or(b, SHAPE_MOVE, v3s(0.0f));
     m.axis = v3(0.0f, 1.0f, 0.0f);
     if (spin && spin->set && spin->x[3] != 0.0) {
-        double l = sqrt(spin->x[0] * spin->x[0] + spin->x[1] * spin->x[1] + spin->x[2] * spin->x[2]);
         struct aabb box = aabb_empty();
-        if (!(l > 0.0))
-            fail(p, &spin->key, "'spin' axis has zero length");
-        m.axis = v3((float)(spin->x[0] / l), (float)(spin->x[1] / l), (float)(spin->x[2] / l));
+        m.axis = unit_of(p, spin, "'spin' axis");
         m.omega = (float)(spin->x[3] * (3.14159265358979323846 / 180.0));
         for (i = first; i < p->s->prim_count; i++)
             box = aabb_union(box, mc_prim_bounds(&p->s->prims[i]));
@@ -865,13 +872,8 @@ static void finish_disk(struct parser *p, struct block *b)
     pr.kind = PRIM_DISK;
     pr.p[0] = vec_or(b, DISK_CENTER, v3s(0.0f));
     pr.p[1] = v3(0.0f, 0.0f, 1.0f);
-    if (b->v[DISK_NORMAL].set) {
-        const double *x = b->v[DISK_NORMAL].x;
-        double l = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
-        if (!(l > 0.0))
-            fail(p, &b->v[DISK_NORMAL].key, "disk 'normal' has zero length");
-        pr.p[1] = v3((float)(x[0] / l), (float)(x[1] / l), (float)(x[2] / l));
-    }
+    if (b->v[DISK_NORMAL].set)
+        pr.p[1] = unit_of(p, &b->v[DISK_NORMAL], "disk 'normal'");
     pr.p[2] = v3(b->v[DISK_RADIUS].set ? (float)b->v[DISK_RADIUS].x[0] : 1.0f, 0.0f, 0.0f);
     add_shape(p, b, &pr);
 }

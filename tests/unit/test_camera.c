@@ -10,6 +10,7 @@
 #include "camera/camera.h"
 #include "chi2.h"
 #include "mcrt.h"
+#include "render_util.h"
 #include "t.h"
 
 /* Chi-square tests this binary expects to accept (Šidák correction). */
@@ -169,14 +170,6 @@ static int sample_lens(void *ctx, pcg32 *rng, double *x, double *y)
     *y = (phi < 0.0 ? phi + 2.0 * PI : phi) / (2.0 * PI);
     return 1;
 }
-static double density_one(void *ctx, double x, double y)
-{
-    (void)ctx;
-    (void)x;
-    (void)y;
-    return 1.0;
-}
-
 static void test_lens_uniform(void)
 {
     struct lens_ctx l;
@@ -186,14 +179,7 @@ static void test_lens_uniform(void)
     mc_camera_init(&l.c, &d, 64, 48);
     l.fr = view_of(&d);
     l.R = 0.5;
-    memset(&s, 0, sizeof s);
-    s.name = "lens points";
-    s.sample = sample_lens;
-    s.density = density_one;
-    s.ctx = &l;
-    s.x0 = s.y0 = 0.0;
-    s.x1 = s.y1 = 1.0;
-    s.nx = s.ny = 24;
+    s = chi2_unit_spec("lens points", sample_lens, chi2_unit_density, &l, 24);
     s.seed = 5;
     s.tests = CHI2_TESTS;
     r = chi2_run(&s);
@@ -274,35 +260,18 @@ struct img { int w, h; double *v; }; /* green channel */
 
 static int render(const char *text, int spp, uint64_t seed, struct img *out)
 {
-    mcrt_scene *s = mcrt_scene_new();
-    mcrt_render *r = NULL;
-    mcrt_options o;
-    const float *px;
-    int i, ok = -1;
+    struct t_render_opts o = {0, 0, 0, 0, NULL};
+    float *px;
+    int i;
     memset(out, 0, sizeof *out);
-    if (!s || mcrt_scene_load_string(s, text, strlen(text), "test") != MCRT_OK) {
-        printf("scene error: %s\n", s ? mcrt_scene_error(s) : "out of memory");
-        goto done;
-    }
-    mcrt_options_init(&o);
     o.spp = spp;
     o.seed = seed;
-    r = mcrt_render_new(s, &o);
-    if (!r || mcrt_render_run(r) != MCRT_OK) {
-        printf("render error: %s\n", r ? mcrt_render_error(r) : "out of memory");
-        goto done;
-    }
-    px = mcrt_render_pixels(r, &out->w, &out->h);
-    out->v = malloc((size_t)out->w * (size_t)out->h * sizeof *out->v);
-    if (!out->v)
-        goto done;
-    for (i = 0; i < out->w * out->h; i++)
-        out->v[i] = px[3 * i + 1];
-    ok = 0;
-done:
-    mcrt_render_free(r);
-    mcrt_scene_free(s);
-    return ok;
+    px = t_render(text, &o, &out->w, &out->h, NULL);
+    if (px && (out->v = malloc((size_t)out->w * (size_t)out->h * sizeof *out->v)))
+        for (i = 0; i < out->w * out->h; i++)
+            out->v[i] = px[3 * i + 1];
+    free(px);
+    return out->v ? 0 : -1;
 }
 
 /* A tiny emitting sphere (radiance Le, black, on the axis at depth dp, radius rs) with the lens

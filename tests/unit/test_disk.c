@@ -19,43 +19,19 @@ static struct prim disk(vec3 c, vec3 n, float r)
     return test_prim(PRIM_DISK, c, v3_normalize(n), v3(r, 0.0f, 0.0f));
 }
 
-static struct ray ray(vec3 o, vec3 d)
-{
-    struct ray r;
-    r.o = o;
-    r.d = d;
-    r.tmax = INFINITY;
-    r.time = 0.0f;
-    return r;
-}
-
-static int hit1(const struct prim *p, struct ray r, struct hit *h)
-{
-    h->t = r.tmax;
-    h->u = h->v = -1.0f;
-    return mc_prim_intersect(p, &r, h);
-}
-
-static vec3 rand_dir(pcg32 *g)
-{
-    float z = 1.0f - 2.0f * pcg32_float(g), phi = 2.0f * MC_PI * pcg32_float(g);
-    float s = sqrtf(fmaxf(0.0f, 1.0f - z * z));
-    return v3(s * cosf(phi), s * sinf(phi), z);
-}
-
 static void test_known(void)
 {
     struct prim p = disk(v3(1, 2, 3), v3(0, 0, 1), 2.0f);
     struct hit h;
     struct surface s;
-    struct ray r = ray(v3(1.5f, 2.25f, 10), v3(0, 0, -1));
+    struct ray r = test_ray(v3(1.5f, 2.25f, 10), v3(0, 0, -1));
     /* Exact in binary: t = 7, the point (1.5, 2.25, 3). */
-    T_CHECK(hit1(&p, r, &h) && h.t == 7.0f, "front hit, t %g", h.t);
+    T_CHECK(test_hit1(&p, r, &h) && h.t == 7.0f, "front hit, t %g", h.t);
     mc_prim_surface(&p, NULL, &r, &h, &s);
     T_CHECK(s.p.x == 1.5f && s.p.y == 2.25f && s.p.z == 3.0f, "p (%g %g %g)", s.p.x, s.p.y, s.p.z);
     T_CHECK(s.ng.z == 1.0f && s.ns.z == 1.0f && s.front == 1, "ng.z %g front %d", s.ng.z, s.front);
-    r = ray(v3(1.5f, 2.25f, -1), v3(0, 0, 1));
-    T_CHECK(hit1(&p, r, &h) && h.t == 4.0f, "back hit, t %g", h.t);
+    r = test_ray(v3(1.5f, 2.25f, -1), v3(0, 0, 1));
+    T_CHECK(test_hit1(&p, r, &h) && h.t == 4.0f, "back hit, t %g", h.t);
     mc_prim_surface(&p, NULL, &r, &h, &s);
     T_CHECK(s.front == 0 && s.ng.z == 1.0f, "back: front %d", s.front);
     p.flags = PRIM_FLIP;
@@ -65,17 +41,17 @@ static void test_known(void)
     p.flags = 0;
 
     /* The rim at radius 2: 1.999 in, 2.001 out (along x and along a diagonal). */
-    T_CHECK(hit1(&p, ray(v3(2.999f, 2, 5), v3(0, 0, -1)), &h), "just inside the rim");
-    T_CHECK(!hit1(&p, ray(v3(3.001f, 2, 5), v3(0, 0, -1)), &h), "just outside the rim");
-    T_CHECK(hit1(&p, ray(v3(1 + 1.414f, 2 + 1.414f, 5), v3(0, 0, -1)), &h), "inside, diagonal");
-    T_CHECK(!hit1(&p, ray(v3(1 + 1.415f, 2 + 1.415f, 5), v3(0, 0, -1)), &h), "outside, diagonal");
-    T_CHECK(!hit1(&p, ray(v3(1, 2, 5), v3(0, 0, 1)), &h), "pointing away");
-    T_CHECK(!hit1(&p, ray(v3(0, 2, 3), v3(1, 0, 0)), &h), "ray in the plane");
-    T_CHECK(!hit1(&p, ray(v3(0, 2, 4), v3(1, 0, 0)), &h), "parallel ray");
-    T_CHECK(!hit1(&p, ray(v3(1, 2, 3), v3(0, 0, 1)), &h), "t = 0 is rejected");
-    r = ray(v3(1, 2, 10), v3(0, 0, -1));
+    T_CHECK(test_hit1(&p, test_ray(v3(2.999f, 2, 5), v3(0, 0, -1)), &h), "just inside the rim");
+    T_CHECK(!test_hit1(&p, test_ray(v3(3.001f, 2, 5), v3(0, 0, -1)), &h), "just outside the rim");
+    T_CHECK(test_hit1(&p, test_ray(v3(1 + 1.414f, 2 + 1.414f, 5), v3(0, 0, -1)), &h), "inside, diagonal");
+    T_CHECK(!test_hit1(&p, test_ray(v3(1 + 1.415f, 2 + 1.415f, 5), v3(0, 0, -1)), &h), "outside, diagonal");
+    T_CHECK(!test_hit1(&p, test_ray(v3(1, 2, 5), v3(0, 0, 1)), &h), "pointing away");
+    T_CHECK(!test_hit1(&p, test_ray(v3(0, 2, 3), v3(1, 0, 0)), &h), "ray in the plane");
+    T_CHECK(!test_hit1(&p, test_ray(v3(0, 2, 4), v3(1, 0, 0)), &h), "parallel ray");
+    T_CHECK(!test_hit1(&p, test_ray(v3(1, 2, 3), v3(0, 0, 1)), &h), "t = 0 is rejected");
+    r = test_ray(v3(1, 2, 10), v3(0, 0, -1));
     r.tmax = 7.0f;
-    T_CHECK(!hit1(&p, r, &h), "hit at tmax is rejected");
+    T_CHECK(!test_hit1(&p, r, &h), "hit at tmax is rejected");
     T_NEAR(mc_prim_area(&p), 4.0 * PI, 4e-6, "area π r²");
 }
 
@@ -121,7 +97,7 @@ static void test_rim(void)
         int wrong = 0, tested = 0, hits = 0;
         double worst_t = 0.0;
         for (i = 0; i < 20000; i++) {
-            vec3 n = rand_dir(&g), t, b, o = cases[k].o, target;
+            vec3 n = test_rand_dir(&g), t, b, o = cases[k].o, target;
             struct prim p = disk(cases[k].c, n, cases[k].r);
             double phi = 2.0 * PI * pcg32_double(&g);
             double rho = cases[k].r * (0.99 + 0.02 * pcg32_double(&g));
@@ -140,9 +116,9 @@ static void test_rim(void)
                 vec3 away = v3_add(v3_scale(t, cosf((float)phi)), v3_scale(b, sinf((float)phi)));
                 o = v3_add(target, v3_scale(v3_add(away, v3_scale(p.p[1], cases[k].graze)), 4.0f));
             }
-            r = ray(o, v3_normalize(v3_sub(target, o)));
+            r = test_ray(o, v3_normalize(v3_sub(target, o)));
             lt = reference(&p, &r, &lrho);
-            got = hit1(&p, r, &h);
+            got = test_hit1(&p, r, &h);
             if (lt < 0.0L || fabsl(lrho - cases[k].r) <= 1e-6L * cases[k].r)
                 continue;
             tested++;
@@ -172,8 +148,8 @@ static void test_surface_on_plane(void)
     double worst = 0.0;
     pcg32_seed(&g, 0x5f, 2);
     for (i = 0; i < 10000; i++) {
-        struct prim p = disk(v3(3, 4, 5), rand_dir(&g), 1.0f);
-        vec3 o = v3_scale(rand_dir(&g), 1e4f), t, b, target;
+        struct prim p = disk(v3(3, 4, 5), test_rand_dir(&g), 1.0f);
+        vec3 o = v3_scale(test_rand_dir(&g), 1e4f), t, b, target;
         struct hit h;
         struct surface s;
         struct ray r;
@@ -182,8 +158,8 @@ static void test_surface_on_plane(void)
         /* A point within the square of half-side 0.6 about the centre: inside the disk. */
         target = v3_add(p.p[0], v3_add(v3_scale(t, 0.6f * (2 * pcg32_float(&g) - 1)),
                                        v3_scale(b, 0.6f * (2 * pcg32_float(&g) - 1))));
-        r = ray(o, v3_normalize(v3_sub(target, o)));
-        if (!hit1(&p, r, &h))
+        r = test_ray(o, v3_normalize(v3_sub(target, o)));
+        if (!test_hit1(&p, r, &h))
             continue;
         n++;
         mc_prim_surface(&p, NULL, &r, &h, &s);
@@ -214,7 +190,7 @@ static void test_bounds(void)
     normals[3] = v3(1, 1, 1);
     pcg32_seed(&g, 0xb0, 3);
     for (i = 4; i < 34; i++)
-        normals[i] = rand_dir(&g);
+        normals[i] = test_rand_dir(&g);
     for (i = 0; i < 34; i++) {
         struct prim p = disk(v3(1, -2, 3), normals[i], 0.75f);
         double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
@@ -326,7 +302,7 @@ static void test_bvh(void)
     pcg32_seed(&g, 0xb7, 4);
     for (i = 0; i < N; i++) {
         vec3 c = v3(8 * pcg32_float(&g) - 4, 8 * pcg32_float(&g) - 4, 8 * pcg32_float(&g) - 4);
-        prims[i] = disk(c, rand_dir(&g), 0.05f + 0.5f * pcg32_float(&g));
+        prims[i] = disk(c, test_rand_dir(&g), 0.05f + 0.5f * pcg32_float(&g));
         prims[i].material = i;
     }
     memcpy(orig, prims, sizeof prims);
@@ -335,7 +311,7 @@ static void test_bvh(void)
         return;
     }
     for (i = 0; i < 20000; i++) {
-        struct ray r = ray(v3s(0.0f), rand_dir(&g));
+        struct ray r = test_ray(v3s(0.0f), test_rand_dir(&g));
         struct hit hb, hl;
         int j, fb, fl = 0;
         r.o = v3(6 * pcg32_float(&g) - 3, 6 * pcg32_float(&g) - 3, 6 * pcg32_float(&g) - 3);

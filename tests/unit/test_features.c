@@ -12,34 +12,15 @@
 #include <string.h>
 
 #include "mcrt.h"
+#include "render_util.h"
 #include "t.h"
 
 static float *render(const char *text, int all_features, int spp, int *w, int *h)
 {
-    mcrt_scene *s = mcrt_scene_new();
-    mcrt_render *r = NULL;
-    mcrt_options o;
-    float *out = NULL;
-    if (mcrt_scene_load_string(s, text, strlen(text), "features") != MCRT_OK) {
-        printf("scene error: %s\n", mcrt_scene_error(s));
-        goto done;
-    }
-    mcrt_options_init(&o);
+    struct t_render_opts o = {0, 2, 0, 11, NULL};
     o.spp = spp;
-    o.threads = 2;
-    o.seed = 11;
     o.all_features = all_features;
-    r = mcrt_render_new(s, &o);
-    if (r && mcrt_render_run(r) == MCRT_OK) {
-        const float *px = mcrt_render_pixels(r, w, h);
-        size_t n = (size_t)*w * (size_t)*h * 3;
-        out = malloc(n * sizeof *out);
-        memcpy(out, px, n * sizeof *out);
-    }
-done:
-    mcrt_render_free(r);
-    mcrt_scene_free(s);
-    return out;
+    return t_render(text, &o, w, h, NULL);
 }
 
 /* Worst block z of (a − b) over 8×8 blocks of the green channel; blocks with no spread (both exact,

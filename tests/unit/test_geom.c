@@ -12,30 +12,6 @@
 
 static struct prim sphere(vec3 c, float r) { return test_prim(PRIM_SPHERE, c, v3(r, 0, 0), v3s(0)); }
 
-static struct ray ray(vec3 o, vec3 d)
-{
-    struct ray r;
-    r.o = o;
-    r.d = d;
-    r.tmax = INFINITY;
-    return r;
-}
-
-/* Intersect one primitive with a fresh hit record (t = tmax). */
-static int hit1(const struct prim *p, struct ray r, struct hit *h)
-{
-    h->t = r.tmax;
-    h->u = h->v = -1.0f;
-    return mc_prim_intersect(p, &r, h);
-}
-
-static vec3 rand_dir(pcg32 *g)
-{
-    float z = 1.0f - 2.0f * pcg32_float(g), phi = 2.0f * MC_PI * pcg32_float(g);
-    float s = sqrtf(fmaxf(0.0f, 1.0f - z * z));
-    return v3(s * cosf(phi), s * sinf(phi), z);
-}
-
 static vec3 rand_in_ball(pcg32 *g, float radius)
 {
     for (;;) {
@@ -50,8 +26,8 @@ static void test_triangle(void)
     struct prim p = test_prim(PRIM_TRIANGLE, v3(0, 0, 0), v3(1, 0, 0), v3(0, 1, 0));
     struct hit h;
     struct surface s;
-    struct ray r = ray(v3(0.25f, 0.125f, 1), v3(0, 0, -1));
-    T_CHECK(hit1(&p, r, &h), "front hit");
+    struct ray r = test_ray(v3(0.25f, 0.125f, 1), v3(0, 0, -1));
+    T_CHECK(test_hit1(&p, r, &h), "front hit");
     /* Every quantity is exact in binary: t = 1, barycentrics (0.25, 0.125). */
     T_CHECK(h.t == 1.0f && h.u == 0.25f && h.v == 0.125f, "t %g u %g v %g", h.t, h.u, h.v);
     mc_prim_surface(&p, NULL, &r, &h, &s);
@@ -60,8 +36,8 @@ static void test_triangle(void)
     T_CHECK(s.p.x == 0.25f && s.p.y == 0.125f && s.p.z == 0, "p (%g %g %g)", s.p.x, s.p.y, s.p.z);
 
     /* From below: backfaces are hit too, and the ray arrives on the back. */
-    r = ray(v3(0.25f, 0.125f, -2), v3(0, 0, 1));
-    T_CHECK(hit1(&p, r, &h) && h.t == 2.0f, "back hit t %g", h.t);
+    r = test_ray(v3(0.25f, 0.125f, -2), v3(0, 0, 1));
+    T_CHECK(test_hit1(&p, r, &h) && h.t == 2.0f, "back hit t %g", h.t);
     mc_prim_surface(&p, NULL, &r, &h, &s);
     T_CHECK(s.front == 0 && s.ng.z == 1, "back: front %d ng.z %g", s.front, s.ng.z);
 
@@ -71,19 +47,19 @@ static void test_triangle(void)
     T_CHECK(s.front == 1 && s.ng.z == -1 && s.ns.z == -1, "flip: front %d ng.z %g", s.front, s.ng.z);
     p.flags = 0;
 
-    T_CHECK(!hit1(&p, ray(v3(0.6f, 0.6f, 1), v3(0, 0, -1)), &h), "outside (u + v > 1)");
-    T_CHECK(!hit1(&p, ray(v3(-0.1f, 0.5f, 1), v3(0, 0, -1)), &h), "outside (u < 0)");
-    T_CHECK(!hit1(&p, ray(v3(0.25f, 0.25f, 1), v3(0, 0, 1)), &h), "pointing away (t < 0)");
-    T_CHECK(!hit1(&p, ray(v3(0.25f, 0.25f, 0), v3(0, 0, 1)), &h), "t = 0 is rejected");
-    T_CHECK(!hit1(&p, ray(v3(-1, 0.25f, 0), v3(1, 0, 0)), &h), "ray in the triangle's plane");
-    r = ray(v3(0.25f, 0.25f, 1), v3(0, 0, -1));
+    T_CHECK(!test_hit1(&p, test_ray(v3(0.6f, 0.6f, 1), v3(0, 0, -1)), &h), "outside (u + v > 1)");
+    T_CHECK(!test_hit1(&p, test_ray(v3(-0.1f, 0.5f, 1), v3(0, 0, -1)), &h), "outside (u < 0)");
+    T_CHECK(!test_hit1(&p, test_ray(v3(0.25f, 0.25f, 1), v3(0, 0, 1)), &h), "pointing away (t < 0)");
+    T_CHECK(!test_hit1(&p, test_ray(v3(0.25f, 0.25f, 0), v3(0, 0, 1)), &h), "t = 0 is rejected");
+    T_CHECK(!test_hit1(&p, test_ray(v3(-1, 0.25f, 0), v3(1, 0, 0)), &h), "ray in the triangle's plane");
+    r = test_ray(v3(0.25f, 0.25f, 1), v3(0, 0, -1));
     r.tmax = 1.0f;
-    T_CHECK(!hit1(&p, r, &h), "t = tmax is rejected");
+    T_CHECK(!test_hit1(&p, r, &h), "t = tmax is rejected");
     r.tmax = 1.0000001f;
-    T_CHECK(hit1(&p, r, &h), "t just below tmax");
+    T_CHECK(test_hit1(&p, r, &h), "t just below tmax");
     /* Oblique ray with a non-unit direction: t is in units of |d|. */
-    r = ray(v3(1, 1, 2), v3(-1.5f, -1.75f, -4));
-    T_CHECK(hit1(&p, r, &h), "oblique");
+    r = test_ray(v3(1, 1, 2), v3(-1.5f, -1.75f, -4));
+    T_CHECK(test_hit1(&p, r, &h), "oblique");
     T_NEAR(h.t, 0.5, 1e-7, "oblique t");
     T_NEAR(h.u, 0.25, 1e-7, "oblique u");
     T_NEAR(h.v, 0.125, 1e-7, "oblique v");
@@ -93,7 +69,7 @@ static void test_triangle(void)
 static int touched(const struct prim *p, struct ray r)
 {
     struct hit h;
-    return hit1(p, r, &h) || !(h.t == INFINITY && h.u == -1.0f && h.v == -1.0f);
+    return test_hit1(p, r, &h) || !(h.t == INFINITY && h.u == -1.0f && h.v == -1.0f);
 }
 
 /* Zero-area primitives (a point, a segment, a flat quad, a sphere of radius 0), each hit right on
@@ -108,12 +84,12 @@ static void test_degenerate(void)
     int i, bad = 0;
     pcg32_seed(&g, 3, 1);
     for (i = 0; i < 1000; i++) {
-        vec3 o = v3_add(v3(0.5f, 0.5f, 0), rand_dir(&g));
+        vec3 o = v3_add(v3(0.5f, 0.5f, 0), test_rand_dir(&g));
         float s = pcg32_float(&g);
-        bad += touched(&pts, ray(o, v3_sub(v3(0.5f, 0.5f, 0), o)));
-        bad += touched(&seg, ray(o, v3_sub(v3(s, s, 0), o)));
-        bad += touched(&quad, ray(o, v3_sub(v3(2 * s, 2 * s, 0), o)));
-        bad += touched(&zero, ray(o, v3_sub(v3s(0), o)));
+        bad += touched(&pts, test_ray(o, v3_sub(v3(0.5f, 0.5f, 0), o)));
+        bad += touched(&seg, test_ray(o, v3_sub(v3(s, s, 0), o)));
+        bad += touched(&quad, test_ray(o, v3_sub(v3(2 * s, 2 * s, 0), o)));
+        bad += touched(&zero, test_ray(o, v3_sub(v3s(0), o)));
     }
     T_CHECK(bad == 0, "%d of 4000 rays hit or changed the record", bad);
     T_CHECK(mc_prim_area(&pts) == 0 && mc_prim_area(&seg) == 0, "zero areas");
@@ -124,25 +100,25 @@ static void test_sphere(void)
     struct prim p = sphere(v3(0, 0, 0), 1.0f);
     struct hit h;
     struct surface s;
-    struct ray r = ray(v3(0, 0, 5), v3(0, 0, -1));
-    T_CHECK(hit1(&p, r, &h) && h.t == 4.0f, "outside hit t %g", h.t);
+    struct ray r = test_ray(v3(0, 0, 5), v3(0, 0, -1));
+    T_CHECK(test_hit1(&p, r, &h) && h.t == 4.0f, "outside hit t %g", h.t);
     mc_prim_surface(&p, NULL, &r, &h, &s);
     T_CHECK(s.ng.z == 1 && s.front == 1 && s.p.z == 1, "outside: ng.z %g front %d", s.ng.z, s.front);
-    r = ray(v3(0, 0, 0), v3(1, 0, 0));
-    T_CHECK(hit1(&p, r, &h) && h.t == 1.0f, "from inside t %g", h.t);
+    r = test_ray(v3(0, 0, 0), v3(1, 0, 0));
+    T_CHECK(test_hit1(&p, r, &h) && h.t == 1.0f, "from inside t %g", h.t);
     mc_prim_surface(&p, NULL, &r, &h, &s);
     T_CHECK(s.ng.x == 1 && s.front == 0, "inside: ng.x %g front %d", s.ng.x, s.front);
     p.flags = PRIM_FLIP;
     mc_prim_surface(&p, NULL, &r, &h, &s);
     T_CHECK(s.ng.x == -1 && s.front == 1, "flipped: ng.x %g front %d", s.ng.x, s.front);
     p.flags = 0;
-    T_CHECK(!hit1(&p, ray(v3(0, 1.001f, 5), v3(0, 0, -1)), &h), "passes beside");
-    T_CHECK(!hit1(&p, ray(v3(0, 0, 5), v3(0, 0, 1)), &h), "pointing away");
-    r = ray(v3(0, 0, 5), v3(0, 0, -1));
+    T_CHECK(!test_hit1(&p, test_ray(v3(0, 1.001f, 5), v3(0, 0, -1)), &h), "passes beside");
+    T_CHECK(!test_hit1(&p, test_ray(v3(0, 0, 5), v3(0, 0, 1)), &h), "pointing away");
+    r = test_ray(v3(0, 0, 5), v3(0, 0, -1));
     r.tmax = 4.0f;
-    T_CHECK(!hit1(&p, r, &h), "t = tmax rejected");
+    T_CHECK(!test_hit1(&p, r, &h), "t = tmax rejected");
     r.tmax = 5.5f; /* the near root is at 4 */
-    T_CHECK(hit1(&p, r, &h) && h.t == 4.0f, "nearest root first");
+    T_CHECK(test_hit1(&p, r, &h) && h.t == 4.0f, "nearest root first");
 
     /* Oblique, non-unit direction: the hit point lies on the sphere and is reprojected there. */
     {
@@ -152,10 +128,10 @@ static void test_sphere(void)
         pcg32_seed(&g, 5, 1);
         p = sphere(v3(1, 2, 3), 0.75f);
         for (i = 0; i < 1000; i++) {
-            vec3 o = v3_add(p.p[0], v3_scale(rand_dir(&g), 3.0f));
+            vec3 o = v3_add(p.p[0], v3_scale(test_rand_dir(&g), 3.0f));
             vec3 target = v3_add(p.p[0], rand_in_ball(&g, 0.7f));
-            r = ray(o, v3_scale(v3_sub(target, o), 0.5f + pcg32_float(&g)));
-            if (!hit1(&p, r, &h)) {
+            r = test_ray(o, v3_scale(v3_sub(target, o), 0.5f + pcg32_float(&g)));
+            if (!test_hit1(&p, r, &h)) {
                 bad++;
                 continue;
             }
@@ -177,7 +153,7 @@ static void test_far_sphere(void)
     struct hit h;
     pcg32 g;
     int i, bad = 0;
-    T_CHECK(hit1(&p, ray(v3s(0), v3(0, 0, -1)), &h) && h.t == 99999.0f, "on-axis t %.9g", h.t);
+    T_CHECK(test_hit1(&p, test_ray(v3s(0), v3(0, 0, -1)), &h) && h.t == 99999.0f, "on-axis t %.9g", h.t);
     pcg32_seed(&g, 9, 1);
     for (i = 0; i < 1000; i++) {
         /* Aim within 0.99 of the centre, so that the ray hits and is not grazing. */
@@ -188,7 +164,7 @@ static void test_far_sphere(void)
         long double c = fx * fx + fy * fy + fz * fz - 1.0L;
         long double t_ref = (-b - sqrtl(b * b - aa * c)) / aa;
         float ulp = nextafterf((float)t_ref, INFINITY) - (float)t_ref;
-        if (!hit1(&p, ray(v3s(0), d), &h) || fabsl((long double)h.t - t_ref) > ulp)
+        if (!test_hit1(&p, test_ray(v3s(0), d), &h) || fabsl((long double)h.t - t_ref) > ulp)
             bad++;
     }
     /* The double-precision root rounded to float is within 1 ulp of the exact root. */
@@ -200,25 +176,25 @@ static void test_quad(void)
     struct prim p = test_prim(PRIM_QUAD, v3(0, 0, 0), v3(2, 0, 0), v3(0, 1, 0));
     struct hit h;
     struct surface s;
-    struct ray r = ray(v3(1.5f, 0.25f, 2), v3(0, 0, -1));
-    T_CHECK(hit1(&p, r, &h), "hit");
+    struct ray r = test_ray(v3(1.5f, 0.25f, 2), v3(0, 0, -1));
+    T_CHECK(test_hit1(&p, r, &h), "hit");
     T_CHECK(h.t == 2.0f && h.u == 0.75f && h.v == 0.25f, "t %g s %g t %g", h.t, h.u, h.v);
     mc_prim_surface(&p, NULL, &r, &h, &s);
     T_CHECK(s.ng.z == 1 && s.front == 1 && s.p.x == 1.5f && s.p.y == 0.25f, "surface");
-    r = ray(v3(1.5f, 0.25f, -2), v3(0, 0, 1));
-    T_CHECK(hit1(&p, r, &h), "back hit");
+    r = test_ray(v3(1.5f, 0.25f, -2), v3(0, 0, 1));
+    T_CHECK(test_hit1(&p, r, &h), "back hit");
     mc_prim_surface(&p, NULL, &r, &h, &s);
     T_CHECK(s.front == 0, "back side");
-    T_CHECK(!hit1(&p, ray(v3(2.1f, 0.5f, 1), v3(0, 0, -1)), &h), "beyond e1");
-    T_CHECK(!hit1(&p, ray(v3(1, 1.1f, 1), v3(0, 0, -1)), &h), "beyond e2");
-    T_CHECK(!hit1(&p, ray(v3(-0.1f, 0.5f, 1), v3(0, 0, -1)), &h), "before the corner");
+    T_CHECK(!test_hit1(&p, test_ray(v3(2.1f, 0.5f, 1), v3(0, 0, -1)), &h), "beyond e1");
+    T_CHECK(!test_hit1(&p, test_ray(v3(1, 1.1f, 1), v3(0, 0, -1)), &h), "beyond e2");
+    T_CHECK(!test_hit1(&p, test_ray(v3(-0.1f, 0.5f, 1), v3(0, 0, -1)), &h), "before the corner");
     /* A slanted parallelogram: the dual basis recovers (s, t) of a point built from them. */
     p = test_prim(PRIM_QUAD, v3(1, 2, 3), v3(1, 0.5f, 0.25f), v3(-0.25f, 1, 0.5f));
     {
         vec3 target = v3_add(v3_add(p.p[0], v3_scale(p.p[1], 0.3f)), v3_scale(p.p[2], 0.6f));
         vec3 o = v3_add(target, v3(0.5f, -1, 3));
-        r = ray(o, v3_sub(target, o));
-        T_CHECK(hit1(&p, r, &h), "slanted hit");
+        r = test_ray(o, v3_sub(target, o));
+        T_CHECK(test_hit1(&p, r, &h), "slanted hit");
         T_NEAR(h.t, 1.0, 1e-6, "slanted t");
         T_NEAR(h.u, 0.3, 1e-6, "slanted s");
         T_NEAR(h.v, 0.6, 1e-6, "slanted t param");
@@ -229,7 +205,7 @@ static void test_shading_normals(void)
 {
     vec3 normals[9];
     struct prim p = test_prim(PRIM_TRIANGLE, v3(0, 0, 0), v3(1, 0, 0), v3(0, 1, 0));
-    struct ray r = ray(v3(0.25f, 0.25f, 1), v3(0, 0, -1));
+    struct ray r = test_ray(v3(0.25f, 0.25f, 1), v3(0, 0, -1));
     struct hit h;
     struct surface s;
     vec3 want;
@@ -239,7 +215,7 @@ static void test_shading_normals(void)
     normals[3] = normals[4] = normals[5] = v3(0, 0, -1);
     normals[6] = normals[7] = normals[8] = v3s(0);
     p.normals = 0;
-    T_CHECK(hit1(&p, r, &h), "hit");
+    T_CHECK(test_hit1(&p, r, &h), "hit");
     mc_prim_surface(&p, normals, &r, &h, &s);
     want = v3_normalize(v3_add(v3_add(v3_scale(normals[0], 0.5f), v3_scale(normals[1], 0.25f)),
                                v3_scale(normals[2], 0.25f)));
@@ -385,13 +361,13 @@ static void aimed_rays(const struct mesh *m, const struct bvh *b, const struct p
 {
     int i, e;
     for (i = 0; i < m->nv; i++) {
-        shoot(b, p, m->nt, ray(o, v3_sub(m->v[i], o)), 1, mc);
-        shoot(b, p, m->nt, ray(o, v3_normalize(v3_sub(m->v[i], o))), 1, mc);
+        shoot(b, p, m->nt, test_ray(o, v3_sub(m->v[i], o)), 1, mc);
+        shoot(b, p, m->nt, test_ray(o, v3_normalize(v3_sub(m->v[i], o))), 1, mc);
     }
     for (i = 0; i < m->nt; i++)
         for (e = 0; e < 3; e++) {
             vec3 a = m->v[m->tri[i][e]], c = m->v[m->tri[i][(e + 1) % 3]];
-            shoot(b, p, m->nt, ray(o, v3_sub(v3_scale(v3_add(a, c), 0.5f), o)), 1, mc);
+            shoot(b, p, m->nt, test_ray(o, v3_sub(v3_scale(v3_add(a, c), 0.5f), o)), 1, mc);
         }
 }
 
@@ -407,7 +383,7 @@ static void test_watertight_mesh(const char *name, const struct mesh *m, int ran
     T_CHECK(mc_bvh_build(&b, p, (size_t)m->nt, &d) == MCRT_OK, "build: %s", d.msg);
     pcg32_seed(&g, 21, (uint64_t)m->nt);
     for (i = 0; i < random_rays; i++)
-        shoot(&b, p, m->nt, ray(rand_in_ball(&g, origin_radius), rand_dir(&g)), i < brute_random,
+        shoot(&b, p, m->nt, test_ray(rand_in_ball(&g, origin_radius), test_rand_dir(&g)), i < brute_random,
               &mc);
     aimed_rays(m, &b, p, v3s(0), &mc);
     for (i = 0; i < 20; i++)
@@ -439,7 +415,7 @@ static void test_watertight_axis_rays(const struct mesh *m)
                             vec3 o = v3(0.25f * (float)x, 0.25f * (float)y, 0.25f * (float)z);
                             if (dx == 0 && dy == 0 && dz == 0)
                                 continue;
-                            shoot(&b, p, m->nt, ray(o, v3((float)dx, (float)dy, (float)dz)), 1, &mc);
+                            shoot(&b, p, m->nt, test_ray(o, v3((float)dx, (float)dy, (float)dz)), 1, &mc);
                         }
     T_CHECK(mc.bvh == 0 && mc.brute == 0, "cube axis rays: %ld BVH, %ld brute misses of %ld",
             mc.bvh, mc.brute, mc.rays);

@@ -553,15 +553,7 @@ static void chi2_light(const char *name, const char *text, float time, vec3 towa
     c.time = time;
     c.f = frame_from_normal(v3_normalize(toward));
     if (s.prims[c.l->prim].kind == PRIM_QUAD || s.prims[c.l->prim].kind == PRIM_TRIANGLE) {
-        struct chi2_spec q;
-        memset(&q, 0, sizeof q);
-        q.name = name;
-        q.sample = square_sample;
-        q.density = square_density;
-        q.ctx = &c;
-        q.x0 = q.y0 = 0.0;
-        q.x1 = q.y1 = 1.0;
-        q.nx = q.ny = 40;
+        struct chi2_spec q = chi2_unit_spec(name, square_sample, square_density, &c, 40);
         q.samples = 1000000;
         q.seed = 0x11647;
         q.tests = CHI2_TESTS;

@@ -11,6 +11,7 @@
 #include "geom/bvh_node.h"
 #include "prim_util.h"
 #include "scene/scene.h"
+#include "render_util.h"
 #include "t.h"
 
 static float uniform(pcg32 *g, float lo, float hi) { return lo + (hi - lo) * pcg32_float(g); }
@@ -646,30 +647,11 @@ static void test_bad_motion_index(void)
  * pixels (3 floats each, malloc'd) or NULL after printing why. */
 static float *render(const char *text, int spp, uint64_t seed, int threads, int *w, int *h)
 {
-    mcrt_scene *s = mcrt_scene_new();
-    mcrt_render *r = NULL;
-    mcrt_options o;
-    float *out = NULL;
-    if (mcrt_scene_load_string(s, text, strlen(text), "test") != MCRT_OK) {
-        printf("scene error: %s\n", mcrt_scene_error(s));
-    } else {
-        mcrt_options_init(&o);
-        o.spp = spp;
-        o.seed = seed;
-        o.threads = threads;
-        r = mcrt_render_new(s, &o);
-        if (!r || mcrt_render_run(r) != MCRT_OK) {
-            printf("render error: %s\n", r ? mcrt_render_error(r) : "out of memory");
-        } else {
-            const float *px = mcrt_render_pixels(r, w, h);
-            size_t n = (size_t)*w * (size_t)*h * 3;
-            out = malloc(n * sizeof *out);
-            memcpy(out, px, n * sizeof *out);
-        }
-    }
-    mcrt_render_free(r);
-    mcrt_scene_free(s);
-    return out;
+    struct t_render_opts o = {0, 0, 0, 0, NULL};
+    o.spp = spp;
+    o.seed = seed;
+    o.threads = threads;
+    return t_render(text, &o, w, h, NULL);
 }
 
 /* The blur scene, 48×32 pixels: a grey wall under a point light, a red sphere crossing the image

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "mcrt.h"
+#include "render_util.h"
 #include "t.h"
 
 static const double PI = 3.14159265358979323846;
@@ -22,35 +23,13 @@ struct img {
 /* Render scene text with the given options; returns 0 on success. */
 static int render(const char *text, int spp, int threads, const char *integrator, struct img *out)
 {
-    mcrt_scene *s = mcrt_scene_new();
-    mcrt_render *r;
-    mcrt_options o;
-    const float *px;
+    struct t_render_opts o = {0, 0, 0, 7, NULL};
     memset(out, 0, sizeof *out);
-    if (mcrt_scene_load_string(s, text, strlen(text), "test") != MCRT_OK) {
-        printf("scene error: %s\n", mcrt_scene_error(s));
-        mcrt_scene_free(s);
-        return -1;
-    }
-    mcrt_options_init(&o);
     o.spp = spp;
     o.threads = threads;
-    o.seed = 7;
     o.integrator = integrator;
-    r = mcrt_render_new(s, &o);
-    if (!r || mcrt_render_run(r) != MCRT_OK) {
-        printf("render error: %s\n", r ? mcrt_render_error(r) : "out of memory");
-        mcrt_render_free(r);
-        mcrt_scene_free(s);
-        return -1;
-    }
-    px = mcrt_render_pixels(r, &out->w, &out->h);
-    out->rgb = malloc((size_t)out->w * (size_t)out->h * 3 * sizeof *out->rgb);
-    memcpy(out->rgb, px, (size_t)out->w * (size_t)out->h * 3 * sizeof *out->rgb);
-    mcrt_render_stats(r, &out->stats);
-    mcrt_render_free(r);
-    mcrt_scene_free(s);
-    return 0;
+    out->rgb = t_render(text, &o, &out->w, &out->h, &out->stats);
+    return out->rgb ? 0 : -1;
 }
 
 /* Mean and standard error of the green channel over pixels whose centre lies within radius rad

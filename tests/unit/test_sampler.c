@@ -431,14 +431,6 @@ static int sample_pair(void *ctx, pcg32 *rng, double *x, double *y)
     return 1;
 }
 
-static double density_one(void *ctx, double x, double y)
-{
-    (void)ctx;
-    (void)x;
-    (void)y;
-    return 1.0;
-}
-
 #define UNIFORM_KINDS 5
 #define UNIFORM_PAIRS 4
 #define CHI2_TESTS (UNIFORM_KINDS * UNIFORM_PAIRS)
@@ -468,13 +460,7 @@ static void test_uniformity(void)
             src.b = pairs[q][1];
             snprintf(name, sizeof name, "%s spp %d values (%d, %d)", kind_names[kinds[t]], spps[t], src.a,
                      src.b);
-            memset(&s, 0, sizeof s);
-            s.name = name;
-            s.sample = sample_pair;
-            s.density = density_one;
-            s.ctx = &src;
-            s.x1 = s.y1 = 1.0;
-            s.nx = s.ny = 16;
+            s = chi2_unit_spec(name, sample_pair, chi2_unit_density, &src, 16);
             s.samples = 100000;
             s.tests = CHI2_TESTS;
             r = chi2_run(&s);

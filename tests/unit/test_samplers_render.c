@@ -15,6 +15,7 @@
 #include <string.h>
 
 #include "mcrt.h"
+#include "render_util.h"
 #include "t.h"
 
 enum { SPP = 16, REF_SPP = 512 };
@@ -44,35 +45,16 @@ static const char dof[] =
 /* Render the scene on a 96×96 film with this sampler; the pixels (owned by the caller) or NULL. */
 static float *render(const char *scene, const char *sampler, int spp, uint64_t seed, int *npix)
 {
+    struct t_render_opts o = {0, 0, 0, 0, NULL};
     char text[1024];
-    mcrt_scene *s = mcrt_scene_new();
-    mcrt_render *r = NULL;
-    mcrt_options o;
-    float *out = NULL;
-    const float *px;
-    int w, h;
+    int w = 0, h = 0;
+    float *px;
     snprintf(text, sizeof text, "film { width 96 height 96 sampler %s }\n%s", sampler, scene);
-    if (!s || mcrt_scene_load_string(s, text, strlen(text), sampler) != MCRT_OK) {
-        printf("scene error: %s\n", s ? mcrt_scene_error(s) : "out of memory");
-        goto done;
-    }
-    mcrt_options_init(&o);
     o.spp = spp;
     o.seed = seed;
-    r = mcrt_render_new(s, &o);
-    if (!r || mcrt_render_run(r) != MCRT_OK) {
-        printf("render error: %s\n", r ? mcrt_render_error(r) : "out of memory");
-        goto done;
-    }
-    px = mcrt_render_pixels(r, &w, &h);
-    out = malloc(sizeof *out * 3 * (size_t)w * (size_t)h);
-    if (out)
-        memcpy(out, px, sizeof *out * 3 * (size_t)w * (size_t)h);
+    px = t_render(text, &o, &w, &h, NULL);
     *npix = w * h;
-done:
-    mcrt_render_free(r);
-    mcrt_scene_free(s);
-    return out;
+    return px;
 }
 
 struct rel_mse { double mean, se; };
