@@ -4,7 +4,10 @@
 #   make run        set up (installs Debian packages when root), build, render scenes/cornell.mcrt
 #   make test       set up, build and run every test; the last line is "N passed, N failed"
 #   make check      the tests under AddressSanitizer + UndefinedBehaviorSanitizer (build-san/)
+#   make tsan       a multi-threaded render of every scene under ThreadSanitizer (build-tsan/)
+#   make fuzz       libFuzzer (clang) on the scene parser and the OBJ reader, FUZZ_TIME s each (build-fuzz/)
 #   make bench      BVH and path-tracer throughput (not a test)
+#   make ref        regenerate the POV-Ray references in ref/ (needs povray; not part of make test)
 #   make install    PREFIX=/usr/local, DESTDIR honoured
 #   V=1             show full commands
 
@@ -50,11 +53,11 @@ CLI_SRC  := $(wildcard src/cli/*.c)
 LIB_OBJ  := $(LIB_SRC:%.c=$(O)/obj/%.o)
 CLI_OBJ  := $(CLI_SRC:%.c=$(O)/obj/%.o)
 UNIT_SRC := $(wildcard tests/unit/test_*.c)
-UNIT_BIN := $(UNIT_SRC:tests/unit/%.c=$(O)/tests/%)
+UNIT_BIN := $(UNIT_SRC:tests/unit/%.c=$(O)/tests/%) $(O)/tests/test_bvh_portable
 TOOL_SRC := $(wildcard tests/tools/*.c)
 TOOL_BIN := $(TOOL_SRC:tests/tools/%.c=$(O)/tests/%)
 
-.PHONY: all run test check bench install uninstall clean setup
+.PHONY: all run test check tsan fuzz bench install uninstall clean setup ref plots
 all: $(O)/mcrt $(O)/libmcrt.a
 
 $(O)/obj/src/io/%.o: CFLAGS += $(IO_CFLAGS)
@@ -75,6 +78,18 @@ $(O)/tests/%: tests/unit/%.c tests/t.h tests/prim_util.h $(O)/libmcrt.a
 	@mkdir -p $(@D)
 	@$(if $(Q),echo "  CC      $<")
 	$(Q)$(CC) $(CFLAGS) -Itests -o $@ $< $(O)/libmcrt.a $(LDLIBS)
+
+# The BVH tests again with the portable C99 node test (src/geom/bvh.c without SIMD) linked ahead
+# of the library, so that the path the SIMD build does not use is tested too.
+$(O)/obj/bvh_portable.o: src/geom/bvh.c
+	@mkdir -p $(@D)
+	@$(if $(Q),echo "  CC      $< (portable)")
+	$(Q)$(CC) $(CFLAGS) -DMCRT_BVH_PORTABLE -c $< -o $@
+
+$(O)/tests/test_bvh_portable: tests/unit/test_bvh.c tests/t.h tests/prim_util.h $(O)/obj/bvh_portable.o $(O)/libmcrt.a
+	@mkdir -p $(@D)
+	@$(if $(Q),echo "  CC      $< (portable BVH)")
+	$(Q)$(CC) $(CFLAGS) -Itests -o $@ $< $(O)/obj/bvh_portable.o $(O)/libmcrt.a $(LDLIBS)
 
 $(O)/tests/%: tests/tools/%.c $(O)/libmcrt.a
 	@mkdir -p $(@D)
@@ -111,14 +126,60 @@ test: setup
 
 test-build: all $(UNIT_BIN) $(TOOL_BIN)
 
+# POV-Ray references (needs povray; never part of make test): ref/NAME.pov and ref/NAME.exr for
+# every tests/pov/NAME.mcrt, rendered with the flags `mcrt pov` pins in each file. CASES=... limits.
+ref: all $(O)/tests/exr_average
+	@O=$(O) sh tests/tools/pov_ref.sh
+
 check:
 	@$(MAKE) --no-print-directory O=build-san SETUP=0 \
 	  OPT="-O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all" \
 	  LDFLAGS="-fsanitize=address,undefined" test
 
+# ThreadSanitizer: tests/stiff/tsan.sh renders every scene with 4 threads (TSan needs -O1+ and no ASan).
+tsan:
+	@$(MAKE) --no-print-directory O=build-tsan SETUP=0 OPT="-O1 -g -fsanitize=thread" \
+	  LDFLAGS="-fsanitize=thread" all
+	@O=build-tsan sh tests/stiff/tsan.sh
+
+# libFuzzer harnesses (tests/fuzz/fuzz_*.c), run in parallel for FUZZ_TIME seconds each, starting
+# from the seed corpus in tests/fuzz/corpus_*/; new inputs and crashes go to build-fuzz/.
+# A crashing input belongs in tests/fuzz/crash_*/ (replayed by tests/fuzz.sh in make test).
+FUZZ_TIME ?= 600
+FUZZ_SAN   = -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+fuzz:
+	@$(MAKE) --no-print-directory O=build-fuzz SETUP=0 CC=clang OPT="-O1 -g -fsanitize=fuzzer-no-link $(FUZZ_SAN)" \
+	  LDFLAGS="$(FUZZ_SAN)" build-fuzz/fuzz/fuzz_scene build-fuzz/fuzz/fuzz_obj
+	@mkdir -p build-fuzz/corpus_scene build-fuzz/corpus_obj
+	build-fuzz/fuzz/fuzz_scene -max_total_time=$(FUZZ_TIME) -artifact_prefix=build-fuzz/scene- \
+	  build-fuzz/corpus_scene tests/fuzz/corpus_scene > build-fuzz/fuzz_scene.log 2>&1 & \
+	build-fuzz/fuzz/fuzz_obj -max_total_time=$(FUZZ_TIME) -artifact_prefix=build-fuzz/obj- \
+	  build-fuzz/corpus_obj tests/fuzz/corpus_obj > build-fuzz/fuzz_obj.log 2>&1; s2=$$?; wait $$!; s1=$$?; \
+	tail -n 3 build-fuzz/fuzz_scene.log build-fuzz/fuzz_obj.log; [ $$s1 = 0 ] && [ $$s2 = 0 ]
+
+$(O)/fuzz/%: tests/fuzz/%.c $(O)/libmcrt.a
+	@mkdir -p $(@D)
+	@$(if $(Q),echo "  CC      $<")
+	$(Q)$(CC) $(CFLAGS) -fsanitize=fuzzer $(LDFLAGS) -o $@ $< $(O)/libmcrt.a $(LDLIBS)
+
+# Debian's libembree-dev has no pkg-config file: when its header is there, the benchmark (only it;
+# the library never links Embree) also traces every ray set with Embree 3 for comparison.
+ifneq ($(wildcard /usr/include/embree3/rtcore.h),)
+$(O)/tests/bench: CFLAGS += -DMCRT_HAVE_EMBREE
+$(O)/tests/bench: LDLIBS += -lembree3
+endif
 bench: all $(O)/tests/bench $(O)/tests/bench_render
 	$(O)/tests/bench
 	$(O)/tests/bench_render
+
+# Convergence plots (relMSE against seconds, three samplers) for every scene, into $(O)/plots:
+# mcrt converge, gnuplot. Several minutes: each reference is a 256 spp render. Not a test.
+plots: all
+	mkdir -p $(O)/plots
+	for s in scenes/*.mcrt; do \
+	  $(O)/mcrt converge --quiet --spp 1,4,16 --compare sampler=random,stratified,sobol \
+	    -o $(O)/plots $$s || exit 1; \
+	done
 
 install: all
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include \
@@ -139,6 +200,7 @@ uninstall:
 	  $(DESTDIR)$(PREFIX)/share/man/man3/libmcrt.3 $(DESTDIR)$(PREFIX)/share/man/man5/mcrt.5
 
 clean:
-	rm -rf $(O) build-san
+	rm -rf $(O) build-san build-tsan build-fuzz
 
 -include $(LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d)
+-include $(O)/obj/bvh_portable.d

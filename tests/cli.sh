@@ -4,15 +4,7 @@
 # of the right size in every built-in format; --stats; the same bytes with 1 and 2 threads;
 # --quiet. Run from the repository root after the build; $O is the build folder. Prints "ok ..."
 # or "FAIL ...: why" per check, then "N passed, N failed"; exits 1 if any failed.
-O=${O:-build}
-MCRT=$(cd "$O" 2>/dev/null && pwd)/mcrt
-passed=0
-failed=0
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-
-ok() { echo "ok $1"; passed=$((passed + 1)); }
-fail() { echo "FAIL $1: $2"; failed=$((failed + 1)); }
+. tests/harness.sh.inc
 
 # run ARGS...: mcrt in $tmp; stdout in $tmp/out, stderr in $tmp/err, exit status in $rc. A run
 # that hangs (say, rendering what should have been refused) is stopped and fails with status 124.
@@ -138,7 +130,7 @@ if [ "$rc" -eq 0 ] && head -c 14 "$tmp/t.pfm" | cmp -s - "$tmp/header" &&
 else
     fail "PFM" "status $rc, $(head -c 300 "$tmp/err"), size $(wc -c <"$tmp/t.pfm" 2>/dev/null)"
 fi
-if [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -qE '^t\.pfm: 16x12, 4 spp, [0-9]+ threads?, [0-9.]+ s, [0-9.]+ Mrays/s, 0 NaN samples$' "$tmp/err" &&
+if [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -qE '^t\.pfm: 16x12, 4 spp, [0-9]+ threads?, [0-9.]+ s, [0-9.]+ Mrays/s, 0 NaN samples, est\. relMSE [0-9.e+-]+, efficiency [0-9.e+-]+$' "$tmp/err" &&
     ! grep -q "$(printf '\r')" "$tmp/err"; then
     ok "summary line on stderr, no progress bar when stderr is not a terminal"
 else
@@ -191,6 +183,20 @@ if [ "$rc" -eq 0 ] && [ -z "$keys" ] && grep -q '"width": 16,' "$tmp/s.json" &&
 else
     fail "--stats" "status $rc, keys missing:$keys; $(cat "$tmp/s.json" 2>/dev/null)"
 fi
+# A pipe (like --stats /dev/stdout) is written in place, not replaced by a renamed file.
+if mkfifo "$tmp/pipe" 2>/dev/null; then
+    cat "$tmp/pipe" >"$tmp/piped" &
+    reader=$!
+    run tiny.mcrt -o p.pfm --spp 1 --stats pipe
+    # The reader ends at the writer's end of file; if mcrt never wrote through the pipe (it failed,
+    # or renamed a file over it), nothing will, so stop the reader instead of waiting forever.
+    if [ "$rc" -eq 0 ] && [ -p "$tmp/pipe" ]; then wait "$reader"; else kill "$reader"; fi
+    if [ "$rc" -eq 0 ] && [ -p "$tmp/pipe" ] && grep -q '"nan_count": 0,' "$tmp/piped"; then
+        ok "--stats to a pipe: written through it, the pipe is still a pipe"
+    else
+        fail "--stats to a pipe" "status $rc; $(ls -l "$tmp/pipe" 2>&1); $(cat "$tmp/piped")"
+    fi
+fi
 if command -v python3 >/dev/null 2>&1; then
     if python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); assert d["rays"] > 0' "$tmp/s.json"; then
         ok "--stats: valid JSON (python3), rays > 0"
@@ -234,5 +240,4 @@ if command -v script >/dev/null 2>&1 && script -qec true /dev/null >/dev/null 2>
         fail "--quiet on a terminal" "$(od -c "$tmp/quiet.txt" | head -5)"; fi
 fi
 
-echo "$passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+finish

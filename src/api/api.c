@@ -8,9 +8,11 @@
 #include <unistd.h>
 
 #include "core/file.h"
+#include "export/pov.h"
 #include "geom/bvh_node.h"
 #include "integrator/integrator.h"
 #include "io/image.h"
+#include "render/passes.h"
 #include "render/render.h"
 #include "scene/features.h"
 #include "scene/scene.h"
@@ -31,6 +33,7 @@ struct mcrt_render {
     const mcrt_scene *scene;
     mcrt_options opt;
     struct film film;
+    struct aov_film aov;    /* first-hit layers, when opt.aovs asks for any */
     float *rgb;
     int cancel;
     mcrt_stats stats;
@@ -140,6 +143,17 @@ void mcrt_scene_film(const mcrt_scene *s, int *width, int *height, int *spp)
         *spp = s ? s->s.film.spp : 0;
 }
 
+mcrt_status mcrt_scene_export_pov(mcrt_scene *s, const char *path)
+{
+    if (!s)
+        return MCRT_ERR_INVALID;
+    if (!path)
+        return mc_fail(&s->err, MCRT_ERR_INVALID, "mcrt_scene_export_pov: path is NULL");
+    if (!s->loaded)
+        return mc_fail(&s->err, MCRT_ERR_INVALID, "mcrt_scene_export_pov: no scene loaded");
+    return mc_pov_save(&s->s, path, &s->err);
+}
+
 void mcrt_options_init(mcrt_options *o)
 {
     if (!o)
@@ -169,6 +183,7 @@ void mcrt_render_free(mcrt_render *r)
     if (!r)
         return;
     mc_film_free(&r->film);
+    mc_aov_free(&r->aov);
     free(r->rgb);
     free(r);
 }
@@ -225,6 +240,52 @@ static int default_threads(void)
     return n < 1 ? 1 : n > MAX_THREADS ? MAX_THREADS : (int)n;
 }
 
+/* The extra image layers a render can write (mcrt_options.aovs): variance, then the first-hit
+ * layers in the order of enum aov_kind. */
+static const char *const aov_names[] = {"variance", "albedo", "normal", "depth"};
+#define NAOVS (sizeof aov_names / sizeof aov_names[0])
+
+/* Whether the comma-separated list names the layer name. */
+static int has_aov(const char *list, const char *name)
+{
+    size_t len = strlen(name);
+    const char *p;
+    for (p = list; p; p = strchr(p, ','), p = p ? p + 1 : NULL)
+        if (strncmp(p, name, len) == 0 && (p[len] == ',' || p[len] == '\0'))
+            return 1;
+    return 0;
+}
+
+/* Whether the list asks for a layer that needs first-hit data (all but the variance). */
+static int first_hit_aovs(const char *list)
+{
+    size_t i;
+    for (i = 1; list && i < NAOVS; i++)
+        if (has_aov(list, aov_names[i]))
+            return 1;
+    return 0;
+}
+
+/* Every name in the list must be a known layer. */
+static mcrt_status check_aovs(const char *list, mc_diag *d)
+{
+    const char *p = list;
+    size_t i, len;
+    while (p) {
+        const char *comma = strchr(p, ',');
+        len = comma ? (size_t)(comma - p) : strlen(p);
+        for (i = 0; i < NAOVS; i++)
+            if (strlen(aov_names[i]) == len && strncmp(p, aov_names[i], len) == 0)
+                break;
+        if (i == NAOVS)
+            return mc_fail(d, MCRT_ERR_INVALID,
+                           "unknown image layer '%.*s' (use variance, albedo, normal, depth)",
+                           (int)len, p);
+        p = comma ? comma + 1 : NULL;
+    }
+    return MCRT_OK;
+}
+
 /* Resolve the options against the scene into render settings, or explain what is wrong. */
 static mcrt_status settings(const mcrt_render *r, struct render_settings *rs, mc_diag *d)
 {
@@ -254,16 +315,44 @@ static mcrt_status settings(const mcrt_render *r, struct render_settings *rs, mc
     rs->features = o->all_features ? FEATURE_ALL : mc_scene_features(s);
     rs->progress = o->progress;
     rs->user = o->user;
-    return MCRT_OK;
+    rs->sampler = s->film.sampler;
+    if (o->sampler) {
+        static const char *const names[] = {"random", "stratified", "sobol"};
+        static const enum sampler_kind kinds[] = {SAMPLER_RANDOM, SAMPLER_STRATIFIED,
+                                                  SAMPLER_SOBOL};
+        size_t i;
+        for (i = 0; i < 3 && strcmp(o->sampler, names[i]) != 0; i++)
+            ;
+        if (i == 3)
+            return mc_fail(d, MCRT_ERR_INVALID,
+                           "unknown sampler '%s' (use random, stratified or sobol)", o->sampler);
+        rs->sampler = kinds[i];
+    }
+    rs->crop_x0 = rs->crop_y0 = 0;
+    if (o->crop_x0 || o->crop_y0 || o->crop_x1 || o->crop_y1) {
+        if (o->crop_x0 < 0 || o->crop_y0 < 0 || o->crop_x1 > s->film.width
+            || o->crop_y1 > s->film.height || o->crop_x0 >= o->crop_x1 || o->crop_y0 >= o->crop_y1)
+            return mc_fail(d, MCRT_ERR_INVALID,
+                           "crop %d,%d,%d,%d is not a non-empty window inside the %dx%d image",
+                           o->crop_x0, o->crop_y0, o->crop_x1, o->crop_y1, s->film.width,
+                           s->film.height);
+        rs->crop_x0 = o->crop_x0;
+        rs->crop_y0 = o->crop_y0;
+    }
+    if (!(o->time_budget >= 0.0) || !(o->target_error >= 0.0))
+        return mc_fail(d, MCRT_ERR_INVALID, "time_budget and target_error must be >= 0");
+    return check_aovs(o->aovs, d);
 }
 
 mcrt_status mcrt_render_run(mcrt_render *r)
 {
     struct render_settings rs;
-    struct render_result res;
+    struct pass_settings ps;
+    struct pass_result res;
     const struct scene *s;
     mcrt_status st;
     size_t n;
+    int w, h;
     if (!r)
         return MCRT_ERR_INVALID;
     r->err.msg[0] = '\0';
@@ -276,24 +365,34 @@ mcrt_status mcrt_render_run(mcrt_render *r)
     mc_film_free(&r->film);
     free(r->rgb);
     r->rgb = NULL;
-    n = (size_t)s->film.width * (size_t)s->film.height;
-    if (mc_film_init(&r->film, s->film.width, s->film.height) != 0
-        || !(r->rgb = malloc(n * 3 * sizeof *r->rgb)))
-        return mc_fail(&r->err, MCRT_ERR_NOMEM, "out of memory for a %dx%d image", s->film.width,
-                       s->film.height);
+    w = r->opt.crop_x1 ? r->opt.crop_x1 - r->opt.crop_x0 : s->film.width;
+    h = r->opt.crop_y1 ? r->opt.crop_y1 - r->opt.crop_y0 : s->film.height;
+    n = (size_t)w * (size_t)h;
+    mc_aov_free(&r->aov);
+    if (mc_film_init(&r->film, w, h) != 0 || !(r->rgb = malloc(n * 3 * sizeof *r->rgb))
+        || (first_hit_aovs(r->opt.aovs) && mc_aov_init(&r->aov, w, h) != 0))
+        return mc_fail(&r->err, MCRT_ERR_NOMEM, "out of memory for a %dx%d image", w, h);
+    rs.aov = r->aov.pixels ? &r->aov : NULL;
     __atomic_store_n(&r->cancel, 0, __ATOMIC_RELAXED);
     rs.cancel = &r->cancel;
-    st = mc_render(s, &rs, &r->film, &res, &r->err);
+    ps.time_budget = r->opt.time_budget;
+    ps.target_error = r->opt.target_error;
+    ps.max_passes = MAX_SPP / rs.spp;
+    st = mc_render_passes(s, &rs, &ps, &r->film, &res, &r->err);
     mc_film_resolve(&r->film, r->rgb);
-    r->stats.width = s->film.width;
-    r->stats.height = s->film.height;
-    r->stats.spp = rs.spp;
+    r->stats.width = w;
+    r->stats.height = h;
+    r->stats.passes = res.passes;
+    r->stats.spp = rs.spp * (res.passes > 0 ? res.passes : 1);
     r->stats.threads = rs.threads;
     r->stats.seconds = res.seconds;
     r->stats.rays = res.rays;
     r->stats.nan_count = res.nan_count;
+    r->stats.est_relmse = mc_film_est_relmse(&r->film);
+    r->stats.efficiency = 1.0 / (r->stats.est_relmse * res.seconds);
     if (st == MCRT_ERR_CANCELLED)
-        mc_fail(&r->err, st, "render cancelled");
+        mc_fail(&r->err, st, "render cancelled after %d complete pass%s", res.passes,
+                res.passes == 1 ? "" : "es");
     return st;
 }
 
@@ -306,6 +405,35 @@ const float *mcrt_render_pixels(const mcrt_render *r, int *width, int *height)
     return r ? r->rgb : NULL;
 }
 
+/* The image and the layers named in opt.aovs, in the order of aov_names; the variance is
+ * computed here, as only saving needs it. */
+static mcrt_status save_layers(mcrt_render *r, const char *path)
+{
+    struct image_layer layers[1 + NAOVS];
+    size_t i, npix = (size_t)r->film.width * (size_t)r->film.height;
+    float *buf = malloc(npix * 3 * NAOVS * sizeof *buf);
+    int n = 1;
+    mcrt_status st;
+    if (!buf)
+        return mc_fail(&r->err, MCRT_ERR_NOMEM, "out of memory for the image layers");
+    layers[0].name = NULL;
+    layers[0].rgb = r->rgb;
+    for (i = 0; i < NAOVS; i++) {
+        float *rgb = buf + i * npix * 3;
+        if (!has_aov(r->opt.aovs, aov_names[i]))
+            continue;
+        if (i == 0)
+            mc_film_variance(&r->film, rgb);
+        else
+            mc_aov_resolve(&r->aov, (enum aov_kind)(AOV_ALBEDO + (int)i - 1), rgb);
+        layers[n].name = aov_names[i];
+        layers[n++].rgb = rgb;
+    }
+    st = mc_image_write_layers(path, layers, n, r->film.width, r->film.height, &r->err);
+    free(buf);
+    return st;
+}
+
 mcrt_status mcrt_render_save(mcrt_render *r, const char *path)
 {
     if (!r)
@@ -314,6 +442,8 @@ mcrt_status mcrt_render_save(mcrt_render *r, const char *path)
         return mc_fail(&r->err, MCRT_ERR_INVALID, "mcrt_render_save: path is NULL");
     if (!r->rgb)
         return mc_fail(&r->err, MCRT_ERR_INVALID, "nothing rendered yet");
+    if (r->opt.aovs)
+        return save_layers(r, path);
     return mc_image_write(path, r->rgb, r->film.width, r->film.height, &r->err);
 }
 

@@ -4,6 +4,7 @@
 
 #include <ctype.h>
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -135,5 +136,44 @@ int mc_args_u64(const char *name, const char *text, uint64_t *out)
         return 0;
     }
     *out = (uint64_t)v;
+    return 1;
+}
+
+int mc_args_real(const char *name, const char *text, int positive, int below_one, double *out)
+{
+    char *end;
+    double v;
+    errno = 0;
+    v = strtod(text, &end);
+    if (end == text || *end || errno || !(v >= 0.0) || !isfinite(v) || (positive && v == 0.0) ||
+        (below_one && v >= 1.0) || isspace((unsigned char)text[0])) {
+        fprintf(stderr, "mcrt: --%s: expected a number %s, got '%s'\n", name,
+                below_one ? "between 0 and 1" : positive ? "> 0" : ">= 0", text);
+        return 0;
+    }
+    *out = v;
+    return 1;
+}
+
+int mc_args_window(const char *name, const char *text, int out[4])
+{
+    const char *p = text;
+    char *end;
+    long v[4];
+    int i;
+    for (i = 0; i < 4; i++) {
+        errno = 0;
+        v[i] = isdigit((unsigned char)*p) ? strtol(p, &end, 10) : -1;
+        if (v[i] < 0 || errno || v[i] > 1L << 30 || *end != (i < 3 ? ',' : '\0'))
+            break;
+        p = end + 1;
+    }
+    if (i < 4 || v[0] >= v[2] || v[1] >= v[3]) {
+        fprintf(stderr, "mcrt: --%s: expected x0,y0,x1,y1 with x0 < x1 and y0 < y1, got '%s'\n",
+                name, text);
+        return 0;
+    }
+    for (i = 0; i < 4; i++)
+        out[i] = (int)v[i];
     return 1;
 }

@@ -33,5 +33,10 @@ int mc_args_next(struct arg_parser *p, const struct arg_spec *specs, const char 
 int mc_args_int(const char *name, const char *text, int min, int max, int *out);
 /* Parse text as a decimal integer in [0, 2^64 - 1]; like mc_args_int. */
 int mc_args_u64(const char *name, const char *text, uint64_t *out);
+/* Parse text as a finite number >= 0 (> 0 when positive; < 1 as well when below_one); like
+ * mc_args_int. */
+int mc_args_real(const char *name, const char *text, int positive, int below_one, double *out);
+/* Parse "x0,y0,x1,y1", integers with 0 <= x0 < x1 and 0 <= y0 < y1, into out; like mc_args_int. */
+int mc_args_window(const char *name, const char *text, int out[4]);
 
 #endif

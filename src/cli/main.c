@@ -2,6 +2,8 @@
  * image and optional JSON statistics. A thin client of the public API (mcrt.h) and nothing else. */
 #include <errno.h>
 #include <inttypes.h>
+#include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -11,6 +13,8 @@
 #include <unistd.h>
 
 #include "cli/args.h"
+#include "cli/converge.h"
+#include "cli/diff.h"
 #include "mcrt.h"
 
 /* Exit statuses, as documented in --help and mcrt(1). */
@@ -19,6 +23,9 @@ enum { EXIT_OK = 0, EXIT_FAIL = 1, EXIT_USAGE = 2 };
 static const char usage[] =
     "usage: mcrt [render] [options] SCENE\n"
     "       mcrt info SCENE\n"
+    "       mcrt pov SCENE [-o FILE]   (export for POV-Ray; see mcrt pov --help)\n"
+    "       mcrt diff [options] TEST REF   (compare images; see mcrt diff --help)\n"
+    "       mcrt converge [options] SCENE  (error against time; see mcrt converge --help)\n"
     "Render the scene file SCENE (see mcrt(5)) and write the image; or, with info, print the\n"
     "features the scene uses, the sample dimensions one path draws and the memory it needs.\n"
     "\n"
@@ -33,7 +40,16 @@ static const char usage[] =
     "  --integrator NAME   path or direct (default: the scene's)\n"
     "  --all-features      render with the general code path instead of the one built for the\n"
     "                      features the scene uses (the same image in expectation; slower)\n"
-    "  --stats FILE        write statistics as JSON (size, spp, threads, seconds, rays, NaNs)\n"
+    "  --stats FILE        write statistics as JSON (size, spp, threads, seconds, rays, NaNs,\n"
+    "                      estimated relative MSE, efficiency)\n"
+    "  --aov LIST          extra layers in the EXR image, comma-separated: variance (the\n"
+    "                      estimated variance of each pixel mean), albedo, normal, depth (of\n"
+    "                      the first surface seen); layer NAME has channels NAME.R/G/B\n"
+    "  --crop x0,y0,x1,y1  render only pixels x0 <= x < x1, y0 <= y < y1 (each as in the\n"
+    "                      whole image with the same seed)\n"
+    "  --time SECONDS      render passes of --spp samples until the time is spent\n"
+    "  --target-error E    render passes of --spp samples until the estimated relative MSE\n"
+    "                      is at most E\n"
     "  --quiet             print nothing but errors\n"
     "  --help              print this help and exit\n"
     "  --version           print the version and the built-in image formats, and exit\n"
@@ -42,7 +58,9 @@ static const char usage[] =
     "exit status:\n"
     "  0  success\n"
     "  1  failure: the image or statistics could not be written, out of memory\n"
-    "  2  bad input: bad options, a missing or malformed scene, an unsupported image format\n";
+    "  2  bad input: bad options, a missing or malformed scene, an unsupported image format\n"
+    "  130  interrupted (Ctrl-C): the complete passes were written; a second Ctrl-C quits\n"
+    "       at once and leaves the output alone\n";
 
 /* Image formats, for --version and for explaining a format this build lacks. */
 static const struct {
@@ -113,16 +131,15 @@ static int check_folder(const char *path)
 }
 
 /* SCENE's file name with its suffix replaced, in the current folder: scenes/box.mcrt -> box.png. */
-static char *default_output(const char *scene)
+static char *default_output(const char *scene, const char *ext)
 {
-    const char *ext = mcrt_format_supported("png") ? "png" : "pfm";
     const char *base = strrchr(scene, '/'), *dot;
     size_t len;
     char *out;
     base = base ? base + 1 : scene;
     dot = strrchr(base, '.');
     len = dot && dot != base ? (size_t)(dot - base) : strlen(base);
-    out = malloc(len + 5);
+    out = malloc(len + strlen(ext) + 2);
     if (out)
         sprintf(out, "%.*s.%s", (int)len, base, ext);
     return out;
@@ -204,6 +221,15 @@ static void json_string(FILE *f, const char *s)
     fputc('"', f);
 }
 
+/* "  "KEY": VALUE" then end; null for NaN and infinities, which JSON cannot hold. */
+static void json_number(FILE *f, const char *key, double value, const char *end)
+{
+    if (isfinite(value))
+        fprintf(f, "  \"%s\": %.6g%s", key, value, end);
+    else
+        fprintf(f, "  \"%s\": null%s", key, end);
+}
+
 /* Write the statistics to a temporary file renamed over path when complete, so that a failure
  * leaves no partial file. Prints why and returns 0 on failure. */
 static int write_stats(const char *path, const char *scene, const char *image, uint64_t seed,
@@ -211,6 +237,10 @@ static int write_stats(const char *path, const char *scene, const char *image, u
 {
     size_t len = strlen(path) + 32;
     char *tmp = malloc(len);
+    struct stat sb;
+    /* A device or pipe (--stats /dev/stdout) is written in place: renaming over it would replace
+     * the device node. Regular files get a temporary file renamed over them when complete. */
+    int in_place = stat(path, &sb) == 0 && !S_ISREG(sb.st_mode);
     FILE *f;
     int ok;
     if (!tmp) {
@@ -218,7 +248,7 @@ static int write_stats(const char *path, const char *scene, const char *image, u
         return 0;
     }
     snprintf(tmp, len, "%s.tmp-%ld", path, (long)getpid());
-    f = fopen(tmp, "w");
+    f = fopen(in_place ? path : tmp, "w");
     ok = f != NULL;
     if (ok) {
         fprintf(f, "{\n  \"scene\": ");
@@ -228,16 +258,20 @@ static int write_stats(const char *path, const char *scene, const char *image, u
         fprintf(f,
                 ",\n  \"width\": %d,\n  \"height\": %d,\n  \"spp\": %d,\n  \"threads\": %d,\n"
                 "  \"seed\": %" PRIu64 ",\n  \"seconds\": %.6f,\n  \"rays\": %" PRIu64 ",\n"
-                "  \"mrays_per_second\": %.6g,\n  \"nan_count\": %" PRIu64 "\n}\n",
+                "  \"mrays_per_second\": %.6g,\n  \"nan_count\": %" PRIu64 ",\n",
                 st->width, st->height, st->spp, st->threads, seed, st->seconds, st->rays,
                 st->seconds > 0.0 ? (double)st->rays / st->seconds * 1e-6 : 0.0, st->nan_count);
+        /* JSON has no NaN or infinity: an error that cannot be estimated (1 spp) is null. */
+        json_number(f, "est_relmse", st->est_relmse, ",\n");
+        json_number(f, "efficiency", st->efficiency, "\n}\n");
         ok = !ferror(f);
         ok = fclose(f) == 0 && ok;
     }
-    ok = ok && rename(tmp, path) == 0;
+    ok = ok && (in_place || rename(tmp, path) == 0);
     if (!ok) {
         fprintf(stderr, "mcrt: cannot write '%s': %s\n", path, strerror(errno));
-        remove(tmp);
+        if (!in_place)
+            remove(tmp);
     }
     free(tmp);
     return ok;
@@ -246,18 +280,23 @@ static int write_stats(const char *path, const char *scene, const char *image, u
 /* ---- the render command ---- */
 
 enum { OPT_OUTPUT, OPT_SPP, OPT_THREADS, OPT_SEED, OPT_INTEGRATOR, OPT_ALL_FEATURES, OPT_STATS,
-       OPT_QUIET, OPT_HELP, OPT_VERSION, OPT_END };
+       OPT_QUIET, OPT_HELP, OPT_VERSION, OPT_AOV, OPT_CROP, OPT_TIME, OPT_TARGET_ERROR,
+       OPT_END };
 static const struct arg_spec render_options[OPT_END + 1] = {
     [OPT_OUTPUT] = {NULL, 'o', 1},        [OPT_SPP] = {"spp", 0, 1},
     [OPT_THREADS] = {"threads", 0, 1},    [OPT_SEED] = {"seed", 0, 1},
     [OPT_INTEGRATOR] = {"integrator", 0, 1}, [OPT_ALL_FEATURES] = {"all-features", 0, 0},
     [OPT_STATS] = {"stats", 0, 1},
     [OPT_QUIET] = {"quiet", 0, 0},        [OPT_HELP] = {"help", 0, 0},
-    [OPT_VERSION] = {"version", 0, 0},    [OPT_END] = {NULL, 0, 0}};
+    [OPT_VERSION] = {"version", 0, 0},    [OPT_AOV] = {"aov", 0, 1},
+    [OPT_CROP] = {"crop", 0, 1},          [OPT_TIME] = {"time", 0, 1},
+    [OPT_TARGET_ERROR] = {"target-error", 0, 1}, [OPT_END] = {NULL, 0, 0}};
 
 struct render_args {
-    const char *scene, *output, *stats, *integrator;
+    const char *scene, *output, *stats, *integrator, *aovs;
     int spp, threads, quiet, all_features;
+    int crop[4];                      /* x0, y0, x1, y1; all 0 = none */
+    double time_budget, target_error; /* 0 = none */
     uint64_t seed;
 };
 
@@ -308,6 +347,21 @@ static int parse_render_args(int argc, char **argv, struct render_args *a)
         case OPT_STATS:
             a->stats = v;
             break;
+        case OPT_AOV:
+            a->aovs = v;
+            break;
+        case OPT_CROP:
+            if (!mc_args_window("crop", v, a->crop))
+                return EXIT_USAGE;
+            break;
+        case OPT_TIME:
+            if (!mc_args_real("time", v, 1, 0, &a->time_budget))
+                return EXIT_USAGE;
+            break;
+        case OPT_TARGET_ERROR:
+            if (!mc_args_real("target-error", v, 1, 0, &a->target_error))
+                return EXIT_USAGE;
+            break;
         case OPT_QUIET:
             a->quiet = 1;
             break;
@@ -325,6 +379,51 @@ static int parse_render_args(int argc, char **argv, struct render_args *a)
     return -1;
 }
 
+/* ---- Ctrl-C ---- */
+
+/* The first SIGINT cancels the running render (mcrt_render_cancel is safe in a signal handler),
+ * whose complete passes are then written; the second quits at once, leaving the output alone. */
+static volatile sig_atomic_t interrupts;
+static mcrt_render *volatile running;
+
+static void on_sigint(int sig)
+{
+    (void)sig;
+    if (interrupts)
+        _exit(130);
+    interrupts = 1;
+    if (running)
+        mcrt_render_cancel(running);
+}
+
+static void sigint_catch(void)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_sigint;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+}
+
+/* After a render stopped by Ctrl-C: write the complete passes, if any; exit status 130 (128 +
+ * SIGINT, the shell's convention). */
+static int interrupted(mcrt_render *r, const char *output)
+{
+    mcrt_stats st;
+    mcrt_render_stats(r, &st);
+    if (st.passes == 0) {
+        fprintf(stderr, "mcrt: interrupted before a pass was complete; nothing written\n");
+        return 130;
+    }
+    if (mcrt_render_save(r, output) != MCRT_OK) {
+        fprintf(stderr, "mcrt: %s\n", mcrt_render_error(r));
+        return EXIT_FAIL;
+    }
+    fprintf(stderr, "mcrt: interrupted; wrote %s with the %d complete pass%s (%d spp)\n", output,
+            st.passes, st.passes == 1 ? "" : "es", st.spp);
+    return 130;
+}
+
 /* Load, render and write; the output paths have been checked. */
 static int render(const struct render_args *a, const char *output)
 {
@@ -335,6 +434,7 @@ static int render(const struct render_args *a, const char *output)
     struct progress prog;
     mcrt_status status;
     int code = EXIT_FAIL;
+    char passes[48] = "";
 
     if (!scene) {
         fprintf(stderr, "mcrt: out of memory\n");
@@ -352,6 +452,13 @@ static int render(const struct render_args *a, const char *output)
     o.seed = a->seed;
     o.integrator = a->integrator;
     o.all_features = a->all_features;
+    o.aovs = a->aovs;
+    o.crop_x0 = a->crop[0];
+    o.crop_y0 = a->crop[1];
+    o.crop_x1 = a->crop[2];
+    o.crop_y1 = a->crop[3];
+    o.time_budget = a->time_budget;
+    o.target_error = a->target_error;
     if (!a->quiet && isatty(STDERR_FILENO)) {
         prog.start = now();
         prog.last_draw = 0.0;
@@ -364,9 +471,16 @@ static int render(const struct render_args *a, const char *output)
         fprintf(stderr, "mcrt: out of memory\n");
         goto done;
     }
+    running = r;
+    sigint_catch();
     status = mcrt_render_run(r);
+    running = NULL;
     if (o.progress)
         progress_clear(&prog);
+    if (status == MCRT_ERR_CANCELLED && interrupts) {
+        code = interrupted(r, output);
+        goto done;
+    }
     if (status != MCRT_OK) {
         fprintf(stderr, "mcrt: %s\n", mcrt_render_error(r));
         /* MCRT_ERR_INVALID: options the library refused (e.g. more spp than it allows). */
@@ -380,12 +494,17 @@ static int render(const struct render_args *a, const char *output)
     mcrt_render_stats(r, &st);
     if (a->stats && !write_stats(a->stats, a->scene, output, a->seed, &st))
         goto done;
+    /* Progressive renders say how many passes ran. */
+    if (a->time_budget > 0.0 || a->target_error > 0.0)
+        snprintf(passes, sizeof passes, ", %d pass%s", st.passes, st.passes == 1 ? "" : "es");
     if (!a->quiet)
         fprintf(stderr,
-                "%s: %dx%d, %d spp, %d thread%s, %.*f s, %.2f Mrays/s, %" PRIu64 " NaN samples\n",
+                "%s: %dx%d, %d spp, %d thread%s, %.*f s, %.2f Mrays/s, %" PRIu64 " NaN samples, "
+                "est. relMSE %.3g, efficiency %.3g%s\n",
                 output, st.width, st.height, st.spp, st.threads, st.threads == 1 ? "" : "s",
                 st.seconds < 10.0 ? 2 : 1, st.seconds,
-                st.seconds > 0.0 ? (double)st.rays / st.seconds * 1e-6 : 0.0, st.nan_count);
+                st.seconds > 0.0 ? (double)st.rays / st.seconds * 1e-6 : 0.0, st.nan_count,
+                st.est_relmse, st.efficiency, passes);
     code = EXIT_OK;
 done:
     mcrt_render_free(r);
@@ -401,7 +520,7 @@ static int cmd_render(int argc, char **argv)
     int code = parse_render_args(argc, argv, &a);
     if (code >= 0)
         return code;
-    output = a.output ? a.output : (owned = default_output(a.scene));
+    output = a.output ? a.output : (owned = default_output(a.scene, mcrt_format_supported("png") ? "png" : "pfm"));
     if (!output) {
         fprintf(stderr, "mcrt: out of memory\n");
         return EXIT_FAIL;
@@ -409,6 +528,10 @@ static int cmd_render(int argc, char **argv)
     /* Everything that can be known to fail is checked before the render, not after it. */
     if (!check_output(output) || !check_folder(output) || (a.stats && !check_folder(a.stats)))
         code = EXIT_USAGE;
+    else if (a.aovs && strcasecmp(suffix_of(output), "exr") != 0) {
+        fprintf(stderr, "mcrt: --aov needs an EXR image, not '%s'\n", output);
+        code = EXIT_USAGE;
+    }
     else if (same_file(a.scene, output) || (a.stats && same_file(a.scene, a.stats))) {
         fprintf(stderr, "mcrt: refusing to overwrite the scene file '%s'\n", a.scene);
         code = EXIT_USAGE;
@@ -449,13 +572,88 @@ static int cmd_info(int argc, char **argv)
     return code;
 }
 
+/* ---- the pov command ---- */
+
+static const char pov_usage[] =
+    "usage: mcrt pov SCENE [-o FILE]\n"
+    "Write SCENE as a POV-Ray 3.7 scene with the physical mapping of mcrt(1), for an independent\n"
+    "reference render; its second line is a comment with the pinned povray flags.\n"
+    "\n"
+    "options:\n"
+    "  -o FILE   the POV-Ray file to write (default: SCENE's name with .pov, in the current\n"
+    "            folder)\n"
+    "  --help    print this help and exit\n"
+    "\n"
+    "exit status: 0 success; 1 the file could not be written; 2 bad input, or a scene that uses\n"
+    "something POV-Ray cannot reproduce faithfully (the message names it)\n";
+
+enum { POV_OUTPUT, POV_HELP, POV_END };
+static const struct arg_spec pov_options[POV_END + 1] = {
+    [POV_OUTPUT] = {NULL, 'o', 1}, [POV_HELP] = {"help", 0, 0}, [POV_END] = {NULL, 0, 0}};
+
+static int cmd_pov(int argc, char **argv)
+{
+    struct arg_parser p;
+    const char *v, *scene_path = NULL, *output = NULL;
+    char *owned = NULL;
+    mcrt_scene *scene;
+    mcrt_status status;
+    int opt, code;
+    mc_args_init(&p, argc, argv);
+    while ((opt = mc_args_next(&p, pov_options, &v)) != ARG_END) {
+        if (opt == ARG_ERROR)
+            return EXIT_USAGE;
+        if (opt == POV_HELP) {
+            fputs(pov_usage, stdout);
+            return fflush(stdout) == 0 ? EXIT_OK : EXIT_FAIL;
+        }
+        if (opt == POV_OUTPUT)
+            output = v;
+        else if (scene_path) {
+            fprintf(stderr, "mcrt: more than one scene given ('%s' and '%s')\n", scene_path, v);
+            return EXIT_USAGE;
+        } else
+            scene_path = v;
+    }
+    if (!scene_path) {
+        fprintf(stderr, "mcrt: no scene file given (see mcrt pov --help)\n");
+        return EXIT_USAGE;
+    }
+    if (!output && !(output = owned = default_output(scene_path, "pov"))) {
+        fprintf(stderr, "mcrt: out of memory\n");
+        return EXIT_FAIL;
+    }
+    if (same_file(scene_path, output)) {
+        fprintf(stderr, "mcrt: refusing to overwrite the scene file '%s'\n", scene_path);
+        free(owned);
+        return EXIT_USAGE;
+    }
+    if (!(scene = mcrt_scene_new())) {
+        fprintf(stderr, "mcrt: out of memory\n");
+        free(owned);
+        return EXIT_FAIL;
+    }
+    status = mcrt_scene_load_file(scene, scene_path);
+    if (status != MCRT_OK) { /* a missing or malformed scene is bad input */
+        fprintf(stderr, "%s\n", mcrt_scene_error(scene)); /* already "file:line:col: ..." */
+        code = status == MCRT_ERR_NOMEM ? EXIT_FAIL : EXIT_USAGE;
+    } else if ((status = mcrt_scene_export_pov(scene, output)) != MCRT_OK) {
+        fprintf(stderr, "mcrt: %s: %s\n", scene_path, mcrt_scene_error(scene));
+        code = status == MCRT_ERR_NOMEM || status == MCRT_ERR_IO ? EXIT_FAIL : EXIT_USAGE;
+    } else
+        code = EXIT_OK;
+    mcrt_scene_free(scene);
+    free(owned);
+    return code;
+}
+
 /* ---- commands ---- */
 
 /* Commands by name (`mcrt NAME ...`); without one, mcrt renders. Each gets argv from its name. */
 static const struct command {
     const char *name;
     int (*run)(int argc, char **argv);
-} commands[] = {{"render", cmd_render}, {"info", cmd_info}};
+} commands[] = {{"render", cmd_render}, {"info", cmd_info}, {"pov", cmd_pov}, {"diff", mc_cli_diff}, {"converge", mc_cli_converge}};
 
 int main(int argc, char **argv)
 {

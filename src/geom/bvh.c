@@ -1,18 +1,28 @@
-/* bvh.c: binned-SAH BVH build (Wald 2007, "On fast Construction of SAH-based Bounding Volume
- * Hierarchies") into one depth-first array of 32-byte nodes, and single-ray traversal of static
- * primitives and of moving ones (tested in their time-0 frame). */
+/* bvh.c: binned-SAH binary BVH build (Wald 2007, "On fast Construction of SAH-based Bounding Volume
+ * Hierarchies"), parallel over subtrees, collapsed into an 8-wide BVH (Dammertz et al. 2008,
+ * "Shallow Bounding Volume Hierarchies for Fast SIMD Ray Tracing of Incoherent Rays"), and
+ * single-ray traversal with SIMD node tests (SSE, or portable C99 under MCRT_BVH_PORTABLE) of
+ * static primitives and of moving ones (tested in their time-0 frame). */
 #include "geom/bvh.h"
 
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "geom/bvh_node.h"
 #include "geom/motion.h"
+
+#if defined(__SSE2__) && !defined(MCRT_BVH_PORTABLE)
+#include <emmintrin.h>
+#define BVH_SSE 1
+#endif
 
 enum {
     BINS = 16,       /* SAH candidates per axis; Wald 2007 finds 16 within a few % of a full sweep */
     LEAF_MIN = 2,    /* a node of at most this many primitives is always a leaf */
     LEAF_MAX = 8,    /* the SAH may choose a leaf of up to this many */
+    MAX_BUILD_THREADS = 64,
     SAH_DEPTH = 32,  /* below this depth nodes split at the median index (see DEPTH_MAX) */
     /* From depth SAH_DEPTH on every split halves the count, so a node of n < 2^31 primitives
      * reaches LEAF_MAX after at most 28 more levels: no node is deeper than 60. A traversal pushes
@@ -21,6 +31,14 @@ enum {
 };
 /* SAH cost of visiting an inner node (two box tests), in units of one primitive test. */
 #define COST_TRAVERSE 1.0f
+
+/* A node of the binary tree the build makes and then collapses: 32 bytes. The two children of an
+ * inner node are stored together, at index and index + 1. */
+struct bnode {
+    float b[6];      /* lower corner x, y, z, then upper corner x, y, z */
+    uint32_t index;  /* inner: index of the first child; leaf: index of the first primitive */
+    uint32_t count;  /* leaf: number of primitives (>= 1); inner: 0 */
+};
 
 /* An axis-aligned box as arrays, so that the build can index it by axis. */
 struct box {
@@ -215,7 +233,7 @@ static void range_bounds(const struct ref *refs, uint32_t begin, uint32_t end, s
     }
 }
 
-static void set_node_box(struct bvh_node *n, const struct box *b)
+static void set_node_box(struct bnode *n, const struct box *b)
 {
     int a;
     for (a = 0; a < 3; a++) {
@@ -246,32 +264,34 @@ static void permute_prims(struct prim *prims, uint32_t *order, uint32_t n)
     }
 }
 
-/* The build proper, over refs[0, n) into nodes (room for 2n). Depth first with an explicit
- * stack. The root is node 0 and node 1 is padding, so that every sibling pair, allocated together
- * when their parent splits, starts at an even index: with a 64-byte aligned array the two child
- * boxes a traversal tests together share one cache line. */
-static size_t build_nodes(struct bvh_node *nodes, struct ref *refs, uint32_t n,
-                          const struct box *box, const struct box *cbox)
+/* The binary build of the subtree of task root (root->node is ignored: the subtree's root is
+ * node 0, and node 1 is unused) into nodes, which has room for 2 (root->end - root->begin) nodes;
+ * returns the number used. Depth first with an explicit stack. With defer > 0, subtrees of more
+ * than LEAF_MAX and at most defer primitives are not built but appended to deferred[*ndeferred]
+ * with their node slot allocated, for the parallel build to finish. */
+static size_t build_nodes(struct bnode *nodes, struct ref *refs, const struct task *root,
+                          uint32_t defer, struct task *deferred, size_t *ndeferred)
 {
     struct task stack[DEPTH_MAX + 1];
     int sp = 0;
     size_t count = 2;
 
     memset(&nodes[1], 0, sizeof nodes[1]);
-    stack[sp].begin = 0;
-    stack[sp].end = n;
+    stack[sp] = *root;
     stack[sp].node = 0;
-    stack[sp].depth = 0;
-    stack[sp].box = *box;
-    stack[sp].cbox = *cbox;
     sp++;
     while (sp > 0) {
         struct task t = stack[--sp];
-        struct bvh_node *node = &nodes[t.node];
+        struct bnode *node = &nodes[t.node];
         uint32_t size = t.end - t.begin, mid, c = (uint32_t)count;
         struct split s;
         struct box lc, rc;
         int split_found = 0, leaf = size <= LEAF_MAX;
+
+        if (size <= defer && !leaf) {
+            deferred[(*ndeferred)++] = t;
+            continue;
+        }
 
         set_node_box(node, &t.box);
         if (size <= LEAF_MIN) {
@@ -288,19 +308,16 @@ static size_t build_nodes(struct bvh_node *nodes, struct ref *refs, uint32_t n,
         }
         if (leaf) {
             node->index = t.begin;
-            node->count = (uint16_t)size;
-            node->axis = 0;
+            node->count = size;
             continue;
         }
         if (split_found) {
             mid = partition(refs, &t, &s, &lc, &rc);
-            node->axis = (uint16_t)s.axis;
         } else {
             /* Coinciding centroids, or too deep: halve the range as it stands. */
             mid = t.begin + size / 2;
             range_bounds(refs, t.begin, mid, &s.left, &lc);
             range_bounds(refs, mid, t.end, &s.right, &rc);
-            node->axis = 0;
         }
         node->index = c;
         node->count = 0;
@@ -323,12 +340,178 @@ static size_t build_nodes(struct bvh_node *nodes, struct ref *refs, uint32_t n,
     return count;
 }
 
-mcrt_status mc_bvh_build_bounds(struct bvh *b, struct prim *prims, const struct aabb *bounds,
-                                size_t n, mc_diag *d)
+/* The parallel build: the top of the tree is built on the calling thread down to subtrees of at
+ * most n / (PAR_SPLIT · threads) primitives, which the threads then build independently (their
+ * ranges of refs are disjoint), each into its own node array; the arrays are then appended to the
+ * top's, in the order of the subtrees, so the tree is the same whatever the number of threads. */
+enum { PAR_MIN = 4096, PAR_SPLIT = 8 };
+
+struct subtree {
+    struct task task;      /* task.node: its root's slot in the top array */
+    struct bnode *nodes;   /* its own array, node 0 its root */
+    size_t count;
+};
+
+struct par_build {
+    struct ref *refs;
+    struct subtree *sub;
+    size_t nsub;
+    size_t next;           /* next subtree to build, taken with an atomic add */
+    int failed;            /* out of memory in a worker */
+};
+
+static void *build_worker(void *arg)
+{
+    struct par_build *p = arg;
+    for (;;) {
+        size_t i = __atomic_fetch_add(&p->next, 1, __ATOMIC_RELAXED);
+        struct subtree *st;
+        if (i >= p->nsub)
+            return NULL;
+        st = &p->sub[i];
+        st->nodes = malloc(2 * (size_t)(st->task.end - st->task.begin) * sizeof *st->nodes);
+        if (!st->nodes) {
+            __atomic_store_n(&p->failed, 1, __ATOMIC_RELAXED);
+            continue;
+        }
+        st->count = build_nodes(st->nodes, p->refs, &st->task, 0, NULL, NULL);
+    }
+}
+
+/* The binary tree over refs[0, n) into nodes (room for 2n), on up to `threads` threads; returns
+ * the number of nodes, or 0 when out of memory. */
+static size_t build_tree(struct bnode *nodes, struct ref *refs, const struct task *root,
+                         int threads)
+{
+    uint32_t n = root->end - root->begin;
+    struct par_build p;
+    pthread_t tid[MAX_BUILD_THREADS];
+    size_t count, i, k;
+    int started = 0, t;
+
+    if (threads > MAX_BUILD_THREADS)
+        threads = MAX_BUILD_THREADS;
+    if (threads < 2 || n < PAR_MIN)
+        return build_nodes(nodes, refs, root, 0, NULL, NULL);
+    /* Every deferred subtree has more than LEAF_MAX primitives, so there are fewer than n/LEAF_MAX. */
+    p.sub = malloc((n / LEAF_MAX + 1) * sizeof *p.sub);
+    if (!p.sub)
+        return 0;
+    {
+        struct task *tasks = malloc((n / LEAF_MAX + 1) * sizeof *tasks);
+        if (!tasks) {
+            free(p.sub);
+            return 0;
+        }
+        p.nsub = 0;
+        count = build_nodes(nodes, refs, root, n / (PAR_SPLIT * (uint32_t)threads), tasks, &p.nsub);
+        for (i = 0; i < p.nsub; i++) {
+            p.sub[i].task = tasks[i];
+            p.sub[i].nodes = NULL;
+        }
+        free(tasks);
+    }
+    p.refs = refs;
+    p.next = 0;
+    p.failed = 0;
+    for (t = 1; t < threads; t++) {
+        if (pthread_create(&tid[t], NULL, build_worker, &p) != 0)
+            break;
+        started++;
+    }
+    build_worker(&p);
+    for (t = 1; t <= started; t++)
+        pthread_join(tid[t], NULL);
+    /* Append each subtree: its root goes into the slot reserved for it, its other nodes (from 2
+     * on) after the top's, with their child indices moved by the same offset. */
+    for (i = 0; i < p.nsub; i++) {
+        struct subtree *st = &p.sub[i];
+        size_t off = count - 2;
+        if (p.failed)
+            break;
+        for (k = 0; k < st->count; k++) {
+            struct bnode x = st->nodes[k];
+            if (k == 1)
+                continue;
+            if (x.count == 0)
+                x.index += (uint32_t)off;
+            nodes[k == 0 ? st->task.node : k + off] = x;
+        }
+        count += st->count - 2;
+    }
+    for (i = 0; i < p.nsub; i++)
+        free(p.sub[i].nodes);
+    free(p.sub);
+    return p.failed ? 0 : count;
+}
+
+/* Build threads: the processors online, at most MAX_BUILD_THREADS. */
+static int build_threads(void)
+{
+    long n = sysconf(_SC_NPROCESSORS_ONLN);
+    return n < 1 ? 1 : n > MAX_BUILD_THREADS ? MAX_BUILD_THREADS : (int)n;
+}
+
+static float bnode_half_area(const struct bnode *n)
+{
+    float x = n->b[3] - n->b[0], y = n->b[4] - n->b[1], z = n->b[5] - n->b[2];
+    return x * y + y * z + z * x;
+}
+
+/* The wide node made from binary node bi (and, recursively, its subtree) into w[*count]; returns
+ * its index. As in Dammertz et al. 2008 and Embree's collapse, the node takes bi's two children,
+ * then repeatedly opens the inner child of largest surface area (the one a ray crossing the node
+ * most likely enters, by the SAH's argument) until it has BVH_WIDTH children or only leaves. A
+ * binary leaf bi (the root of a tree that is one leaf) becomes a node with that one leaf. Nodes are
+ * numbered in pre-order, so the root is 0; the recursion is no deeper than the binary tree. */
+static uint32_t collapse(const struct bnode *bn, uint32_t bi, struct bvh_node *w, size_t *count)
+{
+    uint32_t slot[BVH_WIDTH], wi = (uint32_t)(*count)++;
+    int k = 0, i, a;
+
+    if (bn[bi].count) {
+        slot[k++] = bi;
+    } else {
+        slot[k++] = bn[bi].index;
+        slot[k++] = bn[bi].index + 1;
+    }
+    while (k < BVH_WIDTH) {
+        int best = -1;
+        float best_area = 0.0f;
+        for (i = 0; i < k; i++)
+            if (bn[slot[i]].count == 0 && (best < 0 || bnode_half_area(&bn[slot[i]]) > best_area)) {
+                best = i;
+                best_area = bnode_half_area(&bn[slot[i]]);
+            }
+        if (best < 0)
+            break;
+        slot[k++] = bn[slot[best]].index + 1;
+        slot[best] = bn[slot[best]].index;
+    }
+    memset(&w[wi], 0, sizeof w[wi]);
+    for (i = 0; i < BVH_WIDTH; i++) {
+        const struct bnode *c = i < k ? &bn[slot[i]] : NULL;
+        for (a = 0; a < 3; a++) {
+            w[wi].b[a][i] = c ? c->b[a] : INFINITY;
+            w[wi].b[a + 3][i] = c ? c->b[a + 3] : -INFINITY;
+        }
+        if (c) {
+            w[wi].count[i] = (uint8_t)c->count;
+            w[wi].child[i] = c->count ? c->index : collapse(bn, slot[i], w, count);
+        }
+    }
+    return wi;
+}
+
+mcrt_status mc_bvh_build_threads(struct bvh *b, struct prim *prims, const struct aabb *bounds,
+                                 size_t n, int threads, mc_diag *d)
 {
     struct ref *refs;
+    struct bnode *bin;
+    struct task root;
     uint32_t *order;
     void *mem = NULL;
+    size_t bin_count, inner;
     struct box box = box_empty(), cbox = box_empty();
     size_t i;
 
@@ -340,8 +523,10 @@ mcrt_status mc_bvh_build_bounds(struct bvh *b, struct prim *prims, const struct 
     if (n > UINT32_MAX / 2)
         return mc_fail(d, MCRT_ERR_INVALID, "too many primitives for the BVH (%zu)", n);
     refs = malloc(n * sizeof *refs);
-    if (!refs || posix_memalign(&mem, 64, 2 * n * sizeof(struct bvh_node)) != 0) {
+    bin = malloc(2 * n * sizeof *bin);
+    if (!refs || !bin) {
         free(refs);
+        free(bin);
         return mc_fail(d, MCRT_ERR_NOMEM, "out of memory building the BVH of %zu primitives", n);
     }
     for (i = 0; i < n; i++) {
@@ -360,9 +545,30 @@ mcrt_status mc_bvh_build_bounds(struct bvh *b, struct prim *prims, const struct 
         box_grow(&box, refs[i].lo, refs[i].hi);
         box_grow(&cbox, c, c);
     }
-    b->node_count = build_nodes(mem, refs, (uint32_t)n, &box, &cbox);
-    /* Give back the unused tail (leaves hold several primitives). A shrinking realloc keeps the
-     * block in place in practice; if it moved, only the cache-line alignment would be lost. */
+    root.begin = 0;
+    root.end = (uint32_t)n;
+    root.node = 0;
+    root.depth = 0;
+    root.box = box;
+    root.cbox = cbox;
+    bin_count = build_tree(bin, refs, &root, threads > 0 ? threads : build_threads());
+    if (bin_count == 0) {
+        free(refs);
+        free(bin);
+        return mc_fail(d, MCRT_ERR_NOMEM, "out of memory building the BVH of %zu primitives", n);
+    }
+    /* Every split adds two binary nodes to the root and the unused node 1; each wide node but a
+     * one-leaf root opens at least one binary inner node, so there are at most max(1, inner). */
+    inner = (bin_count - 2) / 2;
+    if (posix_memalign(&mem, 64, (inner > 1 ? inner : 1) * sizeof(struct bvh_node)) != 0) {
+        free(refs);
+        free(bin);
+        return mc_fail(d, MCRT_ERR_NOMEM, "out of memory building the BVH of %zu primitives", n);
+    }
+    collapse(bin, 0, mem, &b->node_count);
+    free(bin);
+    /* Give back the unused tail. A shrinking realloc keeps the block in place in practice; if it
+     * moved, the nodes would still be 16-byte aligned, which is all the SIMD loads assume. */
     b->nodes = realloc(mem, b->node_count * sizeof *b->nodes);
     if (!b->nodes)
         b->nodes = mem;
@@ -378,9 +584,15 @@ mcrt_status mc_bvh_build_bounds(struct bvh *b, struct prim *prims, const struct 
     return MCRT_OK;
 }
 
+mcrt_status mc_bvh_build_bounds(struct bvh *b, struct prim *prims, const struct aabb *bounds,
+                                size_t n, mc_diag *d)
+{
+    return mc_bvh_build_threads(b, prims, bounds, n, 0, d);
+}
+
 mcrt_status mc_bvh_build(struct bvh *b, struct prim *prims, size_t n, mc_diag *d)
 {
-    return mc_bvh_build_bounds(b, prims, NULL, n, d);
+    return mc_bvh_build_threads(b, prims, NULL, n, 0, d);
 }
 
 void mc_bvh_free(struct bvh *b)
@@ -396,34 +608,63 @@ void mc_bvh_free(struct bvh *b)
 #define SLAB_GROW 1.00000048f
 
 /* The ray as the slab test needs it: origin, 1/d (±inf for a zero component) and, per axis, the
- * index into bvh_node.b of the plane the ray enters through (near) and leaves through (far). */
+ * plane (row of bvh_node.b) the ray enters through (near) and leaves through (far). */
 struct slab_ray {
     float o[3], inv[3];
     int near[3], far[3];
+#ifdef BVH_SSE
+    __m128 o4[3], inv4[3]; /* o and inv broadcast, made once per ray rather than per node */
+#endif
 };
 
-/* Whether the ray meets box b (lower corner b[0..2], upper b[3..5]) within [0, tmax]; *tnear gets
- * the entry distance. A zero direction component with the origin exactly on a slab plane gives
- * 0·inf = NaN; the comparisons are ordered so that a NaN leaves the interval unchanged, which is
- * right for a ray lying in the (closed) slab. */
-static inline int slab(const float *b, const struct slab_ray *s, float tmax, float *tnear)
+/* The slab test of a node's BVH_WIDTH children against the ray's segment [0, tmax]: returns the
+ * mask of children met (bit i for child i) and their entry distances in tn. A zero direction
+ * component with the origin exactly on a slab plane gives 0·inf = NaN; the minima and maxima are
+ * ordered so that a NaN leaves the interval unchanged, which is right for a ray lying in the
+ * (closed) slab. Unused children have empty boxes (lower +inf, upper -inf): entry +inf, exit -inf. */
+#ifdef BVH_SSE
+static inline unsigned node_test(const struct bvh_node *n, const struct slab_ray *s, float tmax,
+                                 float *tn)
 {
-    float tx0 = (b[s->near[0]] - s->o[0]) * s->inv[0];
-    float ty0 = (b[s->near[1]] - s->o[1]) * s->inv[1];
-    float tz0 = (b[s->near[2]] - s->o[2]) * s->inv[2];
-    float tx1 = (b[s->far[0]] - s->o[0]) * s->inv[0];
-    float ty1 = (b[s->far[1]] - s->o[1]) * s->inv[1];
-    float tz1 = (b[s->far[2]] - s->o[2]) * s->inv[2];
-    float t0 = 0.0f, t1 = tmax;
-    t0 = tx0 > t0 ? tx0 : t0;
-    t0 = ty0 > t0 ? ty0 : t0;
-    t0 = tz0 > t0 ? tz0 : t0;
-    t1 = tx1 < t1 ? tx1 : t1;
-    t1 = ty1 < t1 ? ty1 : t1;
-    t1 = tz1 < t1 ? tz1 : t1;
-    *tnear = t0;
-    return t0 <= t1 * SLAB_GROW;
+    /* _mm_max_ps(a, b) and _mm_min_ps(a, b) return b when either is NaN: the accumulator goes
+     * second, as in the portable version's comparisons. Four children per SSE vector. */
+    unsigned mask = 0;
+    int a, g;
+    for (g = 0; g < BVH_WIDTH; g += 4) {
+        __m128 t0 = _mm_setzero_ps(), t1 = _mm_set1_ps(tmax);
+        for (a = 0; a < 3; a++) {
+            __m128 o = s->o4[a], inv = s->inv4[a];
+            __m128 ta = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->b[s->near[a]][g]), o), inv);
+            __m128 tb = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->b[s->far[a]][g]), o), inv);
+            t0 = _mm_max_ps(ta, t0);
+            t1 = _mm_min_ps(tb, t1);
+        }
+        _mm_storeu_ps(&tn[g], t0);
+        mask |= (unsigned)_mm_movemask_ps(_mm_cmple_ps(t0, _mm_mul_ps(t1, _mm_set1_ps(SLAB_GROW))))
+                << g;
+    }
+    return mask;
 }
+#else
+static inline unsigned node_test(const struct bvh_node *n, const struct slab_ray *s, float tmax,
+                                 float *tn)
+{
+    unsigned mask = 0;
+    int i, a;
+    for (i = 0; i < BVH_WIDTH; i++) {
+        float t0 = 0.0f, t1 = tmax;
+        for (a = 0; a < 3; a++) {
+            float ta = (n->b[s->near[a]][i] - s->o[a]) * s->inv[a];
+            float tb = (n->b[s->far[a]][i] - s->o[a]) * s->inv[a];
+            t0 = ta > t0 ? ta : t0;
+            t1 = tb < t1 ? tb : t1;
+        }
+        tn[i] = t0;
+        mask |= (unsigned)(t0 <= t1 * SLAB_GROW) << i;
+    }
+    return mask;
+}
+#endif
 
 /* Left to itself, GCC -O2 keeps one out-of-line traverse() (it is large) with any_hit a run-time
  * argument; forced inlining makes any_hit and the leaf test constants of each caller's copy. */
@@ -468,26 +709,48 @@ static ALWAYS_INLINE int test_moving(void *ctx, const struct prim *p, struct hit
     return mc_prim_intersect_prep(p, &m->q, h);
 }
 
+/* Index of the lowest set bit of a nonzero mask. */
+static inline int lowest_bit(unsigned mask)
+{
+#if defined(__GNUC__)
+    return __builtin_ctz(mask);
+#else
+    int i = 0;
+    while (!(mask >> i & 1))
+        i++;
+    return i;
+#endif
+}
+
+/* A subtree still to visit: a node (count 0) or a leaf (count primitives from index), with the
+ * distance at which the ray enters its box. */
+struct item {
+    uint32_t index, count;
+    float t;
+};
+
 /* Shared traversal; any_hit and leaf are constants at each call site, and the function is always
  * inlined, so each caller gets its own specialised copy (leaf(ctx, ...) becomes a direct, inlined
  * primitive test). The slab tests use the world ray r; leaf tests whatever ctx holds for it.
- * Both children are tested at their parent. When both are hit, the one on the near side of the
- * split plane (by the sign of the direction along the split axis) is visited first, and the other
- * is pushed with its entry distance, so that it is skipped if a closer hit is found meanwhile.
- * The ray constants and the current nearest distance live in locals (not behind pointers that the
- * primitive tests could alias), so that they stay in registers. Rays with a non-finite or zero
- * direction, or a non-finite origin, hit nothing. */
+ * A node's children are tested together. The children met are visited nearest entry first (Wald
+ * et al. 2008, "Getting rid of packets": ordered traversal), the others pushed with their entry
+ * distances, so that a nearest-hit query skips them once a closer hit is found; an occlusion query
+ * stops at the first hit. The ray constants and the current nearest
+ * distance live in locals (not behind pointers that the primitive tests could alias), so that they
+ * stay in registers. Rays with a non-finite or zero direction, or a non-finite origin, hit
+ * nothing. */
 static ALWAYS_INLINE int traverse(const struct bvh *b, const struct prim *prims,
                                   const struct ray *r, struct hit *out, int any_hit,
                                   leaf_test leaf, void *ctx)
 {
-    struct { uint32_t node; float t; } stack[DEPTH_MAX];
+    /* Each level pushes at most BVH_WIDTH - 1 items, and the wide tree is no deeper than the
+     * binary one (DEPTH_MAX). */
+    struct item stack[(BVH_WIDTH - 1) * DEPTH_MAX], cur;
     const struct bvh_node *nodes = b->nodes;
     struct slab_ray s;
     struct hit h;
-    float tmax = r->tmax, t_root;
+    float tmax = r->tmax;
     int sp = 0, found = 0, a;
-    uint32_t ni = 0;
 
     if (b->node_count == 0 || !v3_is_finite(r->o) || !v3_is_finite(r->d) || v3_is_zero(r->d))
         return 0;
@@ -500,43 +763,48 @@ static ALWAYS_INLINE int traverse(const struct bvh *b, const struct prim *prims,
     for (a = 0; a < 3; a++) {
         s.near[a] = s.inv[a] < 0.0f ? a + 3 : a;
         s.far[a] = s.inv[a] < 0.0f ? a : a + 3;
+#ifdef BVH_SSE
+        s.o4[a] = _mm_set1_ps(s.o[a]);
+        s.inv4[a] = _mm_set1_ps(s.inv[a]);
+#endif
     }
-    if (!slab(nodes[0].b, &s, tmax, &t_root))
-        return 0;
     h.t = tmax;
+    cur.index = 0;
+    cur.count = 0;
     for (;;) {
-        const struct bvh_node *n = &nodes[ni];
-        if (n->count == 0) {
-            const struct bvh_node *c = &nodes[n->index];
-            float tl, tr;
-            int hl = slab(c[0].b, &s, tmax, &tl), hr = slab(c[1].b, &s, tmax, &tr);
-            /* Branches, not arithmetic, choose the next node: a predicted branch lets the
-             * processor start loading that node before the box tests have finished, which
-             * matters more than the occasional misprediction. */
-            if (hl && hr) {
-                if (s.inv[n->axis] < 0.0f) {
-                    stack[sp].node = n->index;
-                    stack[sp].t = tl;
-                    ni = n->index + 1;
-                } else {
-                    stack[sp].node = n->index + 1;
-                    stack[sp].t = tr;
-                    ni = n->index;
-                }
-                sp++;
+        if (cur.count == 0) {
+            const struct bvh_node *n = &nodes[cur.index];
+            float tn[BVH_WIDTH];
+            unsigned mask = node_test(n, &s, tmax, tn);
+            struct item hit[BVH_WIDTH];
+            int k = 0, i, j;
+            /* Visit only the set bits: a loop over all slots mispredicts on the mask's bits. */
+            for (; mask; mask &= mask - 1, k++) {
+                i = lowest_bit(mask);
+                hit[k].index = n->child[i];
+                hit[k].count = n->count[i];
+                hit[k].t = tn[i];
+            }
+            if (k == 1) {
+                cur = hit[0];
                 continue;
             }
-            if (hl) {
-                ni = n->index;
-                continue;
-            }
-            if (hr) {
-                ni = n->index + 1;
+            if (k > 1) {
+                /* Insertion sort, farthest first: at most BVH_WIDTH items. */
+                for (i = 1; i < k; i++) {
+                        struct item x = hit[i];
+                        for (j = i; j > 0 && hit[j - 1].t < x.t; j--)
+                            hit[j] = hit[j - 1];
+                        hit[j] = x;
+                    }
+                for (i = 0; i < k - 1; i++)
+                    stack[sp++] = hit[i];
+                cur = hit[k - 1];
                 continue;
             }
         } else {
-            uint32_t k, end = n->index + n->count;
-            for (k = n->index; k < end; k++) {
+            uint32_t k, end = cur.index + cur.count;
+            for (k = cur.index; k < end; k++) {
                 if (leaf(ctx, &prims[k], &h)) {
                     if (any_hit)
                         return 1;
@@ -546,7 +814,7 @@ static ALWAYS_INLINE int traverse(const struct bvh *b, const struct prim *prims,
             }
             tmax = h.t;
         }
-        /* Pop, skipping nodes that start beyond the nearest hit so far. */
+        /* Pop, skipping subtrees that start beyond the nearest hit so far. */
         do {
             if (sp == 0) {
                 if (found)
@@ -555,7 +823,7 @@ static ALWAYS_INLINE int traverse(const struct bvh *b, const struct prim *prims,
             }
             sp--;
         } while (!(stack[sp].t <= tmax * SLAB_GROW));
-        ni = stack[sp].node;
+        cur = stack[sp];
     }
 }
 

@@ -1,6 +1,6 @@
 /* bvh.h: bounding volume hierarchy over the scene's primitives.
  * Binned SAH build (Wald 2007, "On fast Construction of SAH-based Bounding Volume Hierarchies"),
- * flattened into one node array; traversal visits the nearer child first. */
+ * parallel over subtrees, collapsed into an 8-wide BVH; traversal visits the nearest child first. */
 #ifndef MCRT_BVH_H
 #define MCRT_BVH_H
 
@@ -26,6 +26,10 @@ mcrt_status mc_bvh_build(struct bvh *b, struct prim *prims, size_t n, mc_diag *d
  * primitives' own bounds (mc_bvh_build). */
 mcrt_status mc_bvh_build_bounds(struct bvh *b, struct prim *prims, const struct aabb *bounds,
                                 size_t n, mc_diag *d);
+/* mc_bvh_build_bounds on up to `threads` threads (0: one per processor online). The result is the
+ * same for any number of threads. (The other two builds use one per processor.) */
+mcrt_status mc_bvh_build_threads(struct bvh *b, struct prim *prims, const struct aabb *bounds,
+                                 size_t n, int threads, mc_diag *d);
 void mc_bvh_free(struct bvh *b);
 
 /* Nearest hit in (0, r->tmax). Returns 1 and fills h (h->prim included) on a hit. */

@@ -307,6 +307,20 @@ static vec3 disk_point(const struct prim *p, const struct ray *r, float t)
               (float)(p->p[0].z + (wz - k * nz)));
 }
 
+static float max_abs(vec3 v) { return fmaxf(fabsf(v.x), fmaxf(fabsf(v.y), fabsf(v.z))); }
+
+float mc_prim_point_error(const struct prim *p)
+{
+    float m;
+    switch (p->kind) {
+    case PRIM_TRIANGLE: m = fmaxf(max_abs(p->p[0]), fmaxf(max_abs(p->p[1]), max_abs(p->p[2]))); break;
+    case PRIM_SPHERE: m = max_abs(p->p[0]) + fabsf(p->p[1].x); break;
+    case PRIM_DISK: m = max_abs(p->p[0]) + fabsf(p->p[2].x); break;
+    default: m = max_abs(p->p[0]) + max_abs(p->p[1]) + max_abs(p->p[2]); break;
+    }
+    return 0x1p-19f * m;
+}
+
 void mc_prim_surface(const struct prim *p, const vec3 *normals, const struct ray *r,
                      const struct hit *h, struct surface *s)
 {
@@ -334,6 +348,7 @@ void mc_prim_surface(const struct prim *p, const vec3 *normals, const struct ray
     }
     s->ng = flip(p, ng);
     s->ns = s->ng;
+    s->err = mc_prim_point_error(p);
     if (p->kind == PRIM_TRIANGLE && p->normals >= 0) {
         const vec3 *n = normals + p->normals;
         vec3 ns = v3_add(v3_add(v3_scale(n[0], b0), v3_scale(n[1], h->u)), v3_scale(n[2], h->v));

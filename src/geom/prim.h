@@ -43,6 +43,8 @@ struct surface {
     vec3 ng;    /* unit geometric normal on the primitive's front side (flip applied) */
     vec3 ns;    /* unit shading normal on the same side as ng (interpolated for meshes) */
     int front;  /* 1 when the ray arrived on the front side (dot(d, ng) < 0) */
+    float err;  /* bound on how far p may lie off the surface as the intersection tests see it
+                 * (mc_prim_point_error); a spawned ray must start beyond it */
 };
 
 /* Intersection in (0, h->t): on a hit, update h (t, u, v; not prim) and return 1.
@@ -66,6 +68,12 @@ float mc_prim_area(const struct prim *p);
 /* Surface at a hit; normals is the scene's shading-normal array (used when p->normals >= 0). */
 void mc_prim_surface(const struct prim *p, const vec3 *normals, const struct ray *r,
                      const struct hit *h, struct surface *s);
+/* Bound on the distance between a computed point of p (a hit point, an area sample) and p's
+ * surface as mc_prim_intersect sees it. Both are computed from p's parameters, whose rounding is
+ * relative to their magnitude M (the largest coordinate of a vertex, corner plus edges, or centre
+ * plus radius), not to the point's: a point near the origin on a primitive 1e5 wide is off by
+ * ulps of 1e5. Returns 32·2^-24·M (16 ulps of M), a few times the γ3..γ5 error of the sums. */
+float mc_prim_point_error(const struct prim *p);
 /* A point uniform in area on p (pdf 1/area), with its front-side unit geometric normal. */
 vec3 mc_prim_sample_area(const struct prim *p, vec2 u, vec3 *n);
 

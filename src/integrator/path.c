@@ -68,7 +68,7 @@ static inline vec3 light_sample(const struct scene *s, const struct surface *sf,
     f = v3_scale(mc_bsdf_eval(b, wo, wi), fabsf(wi.z));
     if (v3_is_zero(f))
         return v3s(0.0f);
-    shadow.o = ray_offset(sf->p, side_normal(sf->ng, ls.wi));
+    shadow.o = ray_spawn(sf->p, side_normal(sf->ng, ls.wi), sf->err);
     shadow.time = time;
     if (isinf(ls.dist)) {
         shadow.d = ls.wi;
@@ -76,7 +76,9 @@ static inline vec3 light_sample(const struct scene *s, const struct surface *sf,
     } else {
         /* Aim at the light point moved off its own surface, so that the light itself never
          * occludes the segment. */
-        target = v3_is_zero(ls.normal) ? ls.point : ray_offset(ls.point, ls.normal);
+        target = v3_is_zero(ls.normal)
+                     ? ls.point
+                     : ray_spawn(ls.point, ls.normal, mc_prim_point_error(&s->prims[s->lights[li].prim]));
         shadow.d = v3_sub(target, shadow.o);
         shadow.tmax = v3_length(shadow.d);
         if (!(shadow.tmax > 0.0f))
@@ -177,7 +179,7 @@ static inline vec3 radiance(const struct scene *s, const struct integrator_desc 
         specular = bs.delta;
         prev_pdf = bs.pdf;
         prev_p = sf.p;
-        r.o = ray_offset(sf.p, side_normal(sf.ng, wi));
+        r.o = ray_spawn(sf.p, side_normal(sf.ng, wi), sf.err);
         r.d = wi;
         r.tmax = INFINITY;
         depth++;

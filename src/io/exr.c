@@ -1,5 +1,6 @@
-/* exr.c: OpenEXR through its C library, OpenEXRCore: writes scanline float R, G, B; reads the R, G,
- * B (or the first LAYER.R/G/B) half or float channels of a scanline file's first part. */
+/* exr.c: OpenEXR through its C library, OpenEXRCore: writes scanline float R, G, B and named
+ * layers (LAYER.R/G/B); reads the R, G, B (or the first or a named LAYER.R/G/B) half or float
+ * channels of a scanline file's first part. */
 #include "io/formats.h"
 
 #ifdef MCRT_HAVE_EXR
@@ -127,9 +128,28 @@ static exr_context_initializer_t initializer(struct exr_job *job)
     return init;
 }
 
-/* Encode rgb chunk by chunk (16 scanlines per ZIP chunk). The library's pack step gathers each
- * channel from our interleaved rows through the pixel and line strides. */
-static exr_result_t encode_pixels(exr_context_t ctx, const float *rgb, int w, int h)
+/* The pixels of the layer a channel name "R" or "LAYER.R" belongs to (unnamed layers, name NULL
+ * or "", own the bare R, G, B), with *k its component: 0, 1, 2 for R, G, B. */
+static const float *channel_source(const char *channel, const struct image_layer *layers, int n,
+                                   int *k)
+{
+    const char *dot = strrchr(channel, '.');
+    size_t plen = dot ? (size_t)(dot - channel) : 0;
+    const char *comp = dot ? dot + 1 : channel;
+    int i;
+    *k = comp[0] == 'R' ? 0 : comp[0] == 'G' ? 1 : 2;
+    for (i = 0; i < n; i++) {
+        const char *name = layers[i].name ? layers[i].name : "";
+        if (strlen(name) == plen && strncmp(name, channel, plen) == 0)
+            return layers[i].rgb;
+    }
+    return layers[0].rgb; /* not reached: exr_write added only the layers' channels */
+}
+
+/* Encode the layers chunk by chunk (16 scanlines per ZIP chunk). The library's pack step gathers
+ * each channel from our interleaved rows through the pixel and line strides. */
+static exr_result_t encode_pixels(exr_context_t ctx, const struct image_layer *layers, int n,
+                                  int w, int h)
 {
     exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
     exr_chunk_info_t cinfo;
@@ -147,8 +167,10 @@ static exr_result_t encode_pixels(exr_context_t ctx, const float *rgb, int w, in
             break;
         for (c = 0; c < enc.channel_count; c++) {
             exr_coding_channel_info_t *ch = &enc.channels[c];
-            /* The file lists channels alphabetically (B, G, R); our pixels are R, G, B. */
-            int k = ch->channel_name[0] == 'R' ? 0 : ch->channel_name[0] == 'G' ? 1 : 2;
+            /* The file lists channels alphabetically (B, G, R, variance.B, ...); our pixels are
+             * R, G, B per layer. */
+            int k;
+            const float *rgb = channel_source(ch->channel_name, layers, n, &k);
             ch->encode_from_ptr =
                 (const uint8_t *)(rgb + (size_t)cinfo.start_y * (size_t)w * 3 + (size_t)k);
             ch->user_pixel_stride = 3 * (int32_t)sizeof(float);
@@ -167,17 +189,22 @@ static exr_result_t encode_pixels(exr_context_t ctx, const float *rgb, int w, in
     return rv;
 }
 
-static mcrt_status exr_write(FILE *f, const float *rgb, int w, int h, mc_diag *d)
+mcrt_status mc_exr_write_layers(FILE *f, const struct image_layer *layers, int n, int w, int h,
+                                mc_diag *d)
 {
-    static const char *const names[3] = {"R", "G", "B"};
+    static const char *const comp[3] = {"R", "G", "B"};
     struct exr_job job;
     exr_context_initializer_t init;
     exr_context_t ctx = NULL;
     exr_result_t rv, rv_finish;
-    int part, c;
+    int part, c, i;
 
     if (w > INT32_MAX / (3 * (long)sizeof(float))) /* the library's line stride is an int32_t */
         return mc_fail(d, MCRT_ERR_INVALID, "%d pixels is too wide for one EXR scanline", w);
+    for (i = 0; i < n; i++)
+        if (layers[i].name && strlen(layers[i].name) > 200)
+            return mc_fail(d, MCRT_ERR_INVALID, "layer name '%.40s...' is too long",
+                           layers[i].name);
     begin(&job, fileno(f));
     init = initializer(&job);
     rv = exr_start_write(&ctx, "image", EXR_WRITE_FILE_DIRECTLY, &init);
@@ -189,13 +216,22 @@ static mcrt_status exr_write(FILE *f, const float *rgb, int w, int h, mc_diag *d
      * gradient shrinks 60x. Once per render, the time is small next to rendering. */
     if (rv == EXR_ERR_SUCCESS)
         rv = exr_initialize_required_attr_simple(ctx, part, w, h, EXR_COMPRESSION_ZIP);
-    for (c = 0; c < 3 && rv == EXR_ERR_SUCCESS; c++)
-        rv = exr_add_channel(ctx, part, names[c], EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LOGARITHMIC, 1,
-                             1);
+    /* Layers follow the OpenEXR naming convention "LAYER.R" (Technical Introduction, "Layers"),
+     * so that other tools show them as layers. */
+    for (i = 0; i < n && rv == EXR_ERR_SUCCESS; i++)
+        for (c = 0; c < 3 && rv == EXR_ERR_SUCCESS; c++) {
+            char name[256];
+            if (layers[i].name && layers[i].name[0])
+                snprintf(name, sizeof name, "%s.%s", layers[i].name, comp[c]);
+            else
+                snprintf(name, sizeof name, "%s", comp[c]);
+            rv = exr_add_channel(ctx, part, name, EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LOGARITHMIC,
+                                 1, 1);
+        }
     if (rv == EXR_ERR_SUCCESS)
         rv = exr_write_header(ctx);
     if (rv == EXR_ERR_SUCCESS)
-        rv = encode_pixels(ctx, rgb, w, h);
+        rv = encode_pixels(ctx, layers, n, w, h);
     /* exr_finish writes the chunk offset table, so its result matters too. */
     rv_finish = exr_finish(&ctx);
     if (rv == EXR_ERR_SUCCESS)
@@ -204,30 +240,51 @@ static mcrt_status exr_write(FILE *f, const float *rgb, int w, int h, mc_diag *d
     return rv == EXR_ERR_SUCCESS ? MCRT_OK : fail(&job, rv, d);
 }
 
-/* Pick the channels to read as R, G, B: "R", "G", "B" if present, else the alphabetically first
- * layer with all three ("diffuse.R", "diffuse.G", "diffuse.B"). idx gets chlist indices. */
-static int pick_channels(const exr_attr_chlist_t *chl, int idx[3])
+static mcrt_status exr_write(FILE *f, const float *rgb, int w, int h, mc_diag *d)
+{
+    struct image_layer beauty;
+    beauty.name = NULL;
+    beauty.rgb = rgb;
+    return mc_exr_write_layers(f, &beauty, 1, w, h, d);
+}
+
+/* Whether chlist has the channels NAME.R, NAME.G, NAME.B (R, G, B when plen is 0), where NAME is
+ * the first plen characters of name; idx gets their chlist indices. */
+static int find_layer(const exr_attr_chlist_t *chl, const char *name, size_t plen, int idx[3])
 {
     static const char rgb[3] = {'R', 'G', 'B'};
-    int i, j, k;
-    for (i = -1; i < chl->num_channels; i++) {
-        /* i = -1 tries the unprefixed names; otherwise entry i ending in ".R" names a layer. */
-        const char *name = i < 0 ? "R" : chl->entries[i].name.str;
-        size_t plen = i < 0 ? 0 : (size_t)chl->entries[i].name.length - 1;
-        if (i >= 0 && (plen < 2 || name[plen - 1] != '.' || name[plen] != 'R'))
-            continue;
-        for (k = 0; k < 3; k++) {
-            idx[k] = -1;
-            for (j = 0; j < chl->num_channels; j++) {
-                const exr_attr_string_t *s = &chl->entries[j].name;
-                if ((size_t)s->length == plen + 1 && strncmp(s->str, name, plen) == 0 &&
-                    s->str[plen] == rgb[k])
-                    idx[k] = j;
-            }
-            if (idx[k] < 0)
-                break;
+    int j, k;
+    for (k = 0; k < 3; k++) {
+        idx[k] = -1;
+        for (j = 0; j < chl->num_channels; j++) {
+            const exr_attr_string_t *s = &chl->entries[j].name;
+            size_t want = plen ? plen + 2 : 1; /* "NAME.R" or "R" */
+            if ((size_t)s->length == want && strncmp(s->str, name, plen) == 0 &&
+                (!plen || s->str[plen] == '.') && s->str[want - 1] == rgb[k])
+                idx[k] = j;
         }
-        if (k == 3)
+        if (idx[k] < 0)
+            return 0;
+    }
+    return 1;
+}
+
+/* Pick the channels to read as R, G, B. With a layer name, exactly LAYER.R, .G, .B. Without one:
+ * "R", "G", "B" if present, else the alphabetically first layer with all three ("diffuse.R",
+ * "diffuse.G", "diffuse.B"). idx gets chlist indices. */
+static int pick_channels(const exr_attr_chlist_t *chl, const char *layer, int idx[3])
+{
+    int i;
+    if (layer)
+        return find_layer(chl, layer, strlen(layer), idx);
+    if (find_layer(chl, "", 0, idx))
+        return 1;
+    for (i = 0; i < chl->num_channels; i++) {
+        /* Entry i ending in ".R" names a layer. */
+        const char *name = chl->entries[i].name.str;
+        size_t len = (size_t)chl->entries[i].name.length;
+        if (len >= 3 && name[len - 2] == '.' && name[len - 1] == 'R' &&
+            find_layer(chl, name, len - 2, idx))
             return 1;
     }
     return 0;
@@ -280,7 +337,8 @@ static exr_result_t decode_pixels(exr_context_t ctx, const exr_attr_box2i_t *dw,
 }
 
 /* Check part 0 and read it; anything we refuse is explained in d with status MCRT_ERR_IO. */
-static mcrt_status read_part(exr_context_t ctx, struct exr_job *job, struct image *im, mc_diag *d)
+static mcrt_status read_part(exr_context_t ctx, struct exr_job *job, const char *layer,
+                             struct image *im, mc_diag *d)
 {
     exr_storage_t storage;
     exr_attr_box2i_t dw;
@@ -296,9 +354,11 @@ static mcrt_status read_part(exr_context_t ctx, struct exr_job *job, struct imag
     if (storage != EXR_STORAGE_SCANLINE)
         return mc_fail(d, MCRT_ERR_IO, "%s EXR images are not supported (only scanline ones)",
                        storage == EXR_STORAGE_TILED ? "tiled" : "deep");
-    if (!pick_channels(chl, idx))
-        return mc_fail(d, MCRT_ERR_IO,
-                       "no R, G, B channels (nor LAYER.R, .G, .B) in the first part");
+    if (!pick_channels(chl, layer, idx))
+        return layer ? mc_fail(d, MCRT_ERR_IO, "no layer '%s' (channels %s.R, .G, .B)", layer,
+                               layer)
+                     : mc_fail(d, MCRT_ERR_IO,
+                               "no R, G, B channels (nor LAYER.R, .G, .B) in the first part");
     for (k = 0; k < 3; k++) {
         const exr_attr_chlist_entry_t *e = &chl->entries[idx[k]];
         if ((e->pixel_type != EXR_PIXEL_HALF && e->pixel_type != EXR_PIXEL_FLOAT) ||
@@ -319,7 +379,7 @@ static mcrt_status read_part(exr_context_t ctx, struct exr_job *job, struct imag
     return corrupt ? mc_fail(d, MCRT_ERR_IO, "corrupt scanline chunk") : fail(job, rv, d);
 }
 
-static mcrt_status exr_read(FILE *f, struct image *im, mc_diag *d)
+mcrt_status mc_exr_read_layer(FILE *f, const char *layer, struct image *im, mc_diag *d)
 {
     struct exr_job job;
     exr_context_initializer_t init;
@@ -332,10 +392,15 @@ static mcrt_status exr_read(FILE *f, struct image *im, mc_diag *d)
     /* Without reconstruction a damaged chunk table is an error, not a guess. */
     init.flags = EXR_CONTEXT_FLAG_DISABLE_CHUNK_RECONSTRUCTION;
     rv = exr_start_read(&ctx, "image", &init);
-    st = rv == EXR_ERR_SUCCESS ? read_part(ctx, &job, im, d) : fail(&job, rv, d);
+    st = rv == EXR_ERR_SUCCESS ? read_part(ctx, &job, layer, im, d) : fail(&job, rv, d);
     exr_finish(&ctx);
     end();
     return st;
+}
+
+static mcrt_status exr_read(FILE *f, struct image *im, mc_diag *d)
+{
+    return mc_exr_read_layer(f, NULL, im, d);
 }
 
 const struct image_format mc_exr_format = {"exr", "OpenEXR", "libopenexr-dev", exr_write, exr_read};
@@ -343,5 +408,18 @@ const struct image_format mc_exr_format = {"exr", "OpenEXR", "libopenexr-dev", e
 #else
 
 const struct image_format mc_exr_format = {"exr", "OpenEXR", "libopenexr-dev", NULL, NULL};
+
+mcrt_status mc_exr_write_layers(FILE *f, const struct image_layer *layers, int n, int w, int h,
+                                mc_diag *d)
+{
+    (void)f, (void)layers, (void)n, (void)w, (void)h;
+    return mc_fail(d, MCRT_ERR_UNSUPPORTED, "built without OpenEXR");
+}
+
+mcrt_status mc_exr_read_layer(FILE *f, const char *layer, struct image *im, mc_diag *d)
+{
+    (void)f, (void)layer, (void)im;
+    return mc_fail(d, MCRT_ERR_UNSUPPORTED, "built without OpenEXR");
+}
 
 #endif

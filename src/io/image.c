@@ -126,16 +126,31 @@ static FILE *create_temp(const char *path, char **tmp_out)
 
 mcrt_status mc_image_write(const char *path, const float *rgb, int w, int h, mc_diag *d)
 {
+    struct image_layer beauty;
+    beauty.name = NULL;
+    beauty.rgb = rgb;
+    return mc_image_write_layers(path, &beauty, 1, w, h, d);
+}
+
+mcrt_status mc_image_write_layers(const char *path, const struct image_layer *layers, int n, int w,
+                                  int h, mc_diag *d)
+{
     const struct image_format *fmt;
     char *tmp = NULL;
     FILE *f;
     mcrt_status st;
+    int i, layered = n > 1 || (n == 1 && layers[0].name && layers[0].name[0]);
 
-    if (!path || !rgb)
+    for (i = 0; i < n && layers[i].rgb; i++)
+        ;
+    if (!path || n < 1 || i < n)
         return mc_fail(d, MCRT_ERR_INVALID, "cannot write an image: no %s",
                        path ? "pixels" : "path");
     if ((st = lookup(path, "write", &fmt, d)) != MCRT_OK)
         return st;
+    if (layered && fmt != &mc_exr_format)
+        return mc_fail(d, MCRT_ERR_UNSUPPORTED,
+                       "cannot write '%s': only EXR images hold extra layers", path);
     if (w <= 0 || h <= 0 || w > MC_IMAGE_MAX_PIXELS / h)
         return mc_fail(d, MCRT_ERR_INVALID, "cannot write '%s': image size %dx%d is out of range",
                        path, w, h);
@@ -144,7 +159,8 @@ mcrt_status mc_image_write(const char *path, const float *rgb, int w, int h, mc_
         return mc_fail(d, errno == ENOMEM ? MCRT_ERR_NOMEM : MCRT_ERR_IO, "cannot write '%s': %s",
                        path, strerror(errno));
 
-    st = fmt->write(f, rgb, w, h, d);
+    st = layered ? mc_exr_write_layers(f, layers, n, w, h, d)
+                 : fmt->write(f, layers[0].rgb, w, h, d);
     if (st != MCRT_OK)
         st = explain(d, st, "write", path);
     /* fclose flushes, so it is where a full disk shows up. */
@@ -161,6 +177,12 @@ mcrt_status mc_image_write(const char *path, const float *rgb, int w, int h, mc_
 
 mcrt_status mc_image_read(const char *path, struct image *im, mc_diag *d)
 {
+    return mc_image_read_layer(path, NULL, im, d);
+}
+
+mcrt_status mc_image_read_layer(const char *path, const char *layer, struct image *im,
+                                mc_diag *d)
+{
     const struct image_format *fmt;
     struct image got = {0, 0, NULL};
     FILE *f;
@@ -172,10 +194,13 @@ mcrt_status mc_image_read(const char *path, struct image *im, mc_diag *d)
     im->rgb = NULL;
     if ((st = lookup(path, "read", &fmt, d)) != MCRT_OK)
         return st;
+    if (layer && fmt != &mc_exr_format)
+        return mc_fail(d, MCRT_ERR_UNSUPPORTED,
+                       "cannot read layer '%s' of '%s': only EXR images have layers", layer, path);
     f = fopen(path, "rb");
     if (!f)
         return mc_fail(d, MCRT_ERR_IO, "cannot read '%s': %s", path, strerror(errno));
-    st = fmt->read(f, &got, d);
+    st = layer ? mc_exr_read_layer(f, layer, &got, d) : fmt->read(f, &got, d);
     fclose(f);
     if (st != MCRT_OK)
         return explain(d, st, "read", path);

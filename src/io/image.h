@@ -19,4 +19,17 @@ mcrt_status mc_image_write(const char *path, const float *rgb, int w, int h, mc_
 mcrt_status mc_image_read(const char *path, struct image *im, mc_diag *d);
 void mc_image_free(struct image *im);
 
+/* One RGB layer of a multi-layer image: name NULL or "" for the main R, G, B channels. */
+struct image_layer {
+    const char *name;
+    const float *rgb; /* w·h·3 floats, linear */
+};
+/* Write n >= 1 layers of w×h pixels (crash-safe as mc_image_write). More than one layer, or a
+ * named one, needs EXR (channels LAYER.R, .G, .B); other formats are refused. */
+mcrt_status mc_image_write_layers(const char *path, const struct image_layer *layers, int n, int w,
+                                  int h, mc_diag *d);
+/* Read the named layer (NULL: as mc_image_read). Only EXR files have named layers. */
+mcrt_status mc_image_read_layer(const char *path, const char *layer, struct image *im,
+                                mc_diag *d);
+
 #endif

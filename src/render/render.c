@@ -23,6 +23,7 @@ struct job {
     struct camera camera;
     tile_fn tile;                     /* specialised for the scene's features */
     mc_path_fn path;
+    int x0, y0;                       /* the film's origin in the image (render_settings crop) */
     int tiles_x, tile_count;
     pthread_mutex_t lock;   /* guards next_tile, tiles_done and the progress callback */
     int next_tile, tiles_done;
@@ -40,15 +41,16 @@ static int cancelled(const struct job *j)
     return j->rs->cancel && __atomic_load_n(j->rs->cancel, __ATOMIC_RELAXED);
 }
 
-/* The samples of one pixel. F (the features that change camera rays) is a constant in each
+/* The samples of pixel (x, y) of the image (the film may be a crop of it). F (the features that change camera rays) is a constant in each
  * instantiation below, so a pinhole camera in a still scene draws neither lens nor time samples. */
 static inline void render_pixel(struct job *j, struct worker *w, int x, int y, unsigned F)
 {
     const struct render_settings *rs = j->rs;
-    struct film_pixel *px = &j->film->pixels[(size_t)y * (size_t)j->film->width + (size_t)x];
+    struct film_pixel *px = &j->film->pixels[(size_t)(y - j->y0) * (size_t)j->film->width
+                                             + (size_t)(x - j->x0)];
     struct sampler smp;
     int i;
-    mc_sampler_pixel(&smp, j->scene->film.sampler, rs->seed, x, y, rs->spp);
+    mc_sampler_pixel(&smp, rs->sampler, rs->seed, x, y, rs->spp);
     for (i = 0; i < rs->spp; i++) {
         vec2 off;
         struct ray r;
@@ -63,6 +65,8 @@ static inline void render_pixel(struct job *j, struct worker *w, int x, int y, u
                              : mc_camera_ray(&j->camera, off.x, off.y);
         if (F & FEATURE_MOTION)
             mc_camera_at_time(&j->camera, &r, mc_camera_time(&j->camera, mc_sampler_1d(&smp)));
+        if (rs->aov)
+            mc_aov_record(&rs->aov->pixels[px - j->film->pixels], j->scene, &r);
         L = j->path(j->scene, &rs->integrator, r, &smp, &w->rays);
         if (v3_is_finite(L))
             mc_film_add(px, L);
@@ -92,9 +96,9 @@ static tile_fn tile_kernel(unsigned features)
 
 static void render_tile(struct job *j, int tile, struct worker *w)
 {
-    int x0 = (tile % j->tiles_x) * TILE, y0 = (tile / j->tiles_x) * TILE;
-    int x1 = x0 + TILE < j->film->width ? x0 + TILE : j->film->width;
-    int y1 = y0 + TILE < j->film->height ? y0 + TILE : j->film->height;
+    int x0 = j->x0 + (tile % j->tiles_x) * TILE, y0 = j->y0 + (tile / j->tiles_x) * TILE;
+    int x1 = x0 + TILE < j->x0 + j->film->width ? x0 + TILE : j->x0 + j->film->width;
+    int y1 = y0 + TILE < j->y0 + j->film->height ? y0 + TILE : j->y0 + j->film->height;
     j->tile(j, x0, y0, x1, y1, w);
 }
 
@@ -142,7 +146,9 @@ mcrt_status mc_render(const struct scene *s, const struct render_settings *rs, s
     j.scene = s;
     j.rs = rs;
     j.film = f;
-    mc_camera_init(&j.camera, &s->camera, f->width, f->height);
+    mc_camera_init(&j.camera, &s->camera, s->film.width, s->film.height);
+    j.x0 = rs->crop_x0;
+    j.y0 = rs->crop_y0;
     j.tile = tile_kernel(rs->features);
     j.path = mc_path_kernel(rs->features);
     j.tiles_x = (f->width + TILE - 1) / TILE;

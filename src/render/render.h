@@ -3,6 +3,7 @@
 #define MCRT_RENDER_H
 
 #include "core/diag.h"
+#include "render/aov.h"
 #include "render/film.h"
 #include "scene/scene.h"
 
@@ -15,6 +16,11 @@ struct render_settings {
     int (*progress)(void *user, double done); /* serialised; nonzero return cancels */
     void *user;
     int *cancel;                      /* set nonzero (atomically) from anywhere to stop */
+    /* The film's top-left pixel in the scene's image: the film may be a window of it (a crop);
+     * the camera always spans the scene's whole film. */
+    int crop_x0, crop_y0;
+    struct aov_film *aov;             /* film-sized first-hit data to record, or NULL */
+    enum sampler_kind sampler;        /* the film's, unless the options override it */
 };
 
 struct render_result {

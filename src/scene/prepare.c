@@ -41,8 +41,9 @@ static mcrt_status partition(struct scene *s, mc_diag *d)
 /* The BVH of the moving primitives, each bounded over the whole shutter. */
 static mcrt_status build_motion_bvh(struct scene *s, mc_diag *d)
 {
-    struct prim *prims = s->prims + s->static_count;
     size_t i, n = s->prim_count - s->static_count;
+    /* Not s->prims + 0 when the scene has no primitives: arithmetic on NULL is undefined. */
+    struct prim *prims = n ? s->prims + s->static_count : s->prims;
     struct aabb *bounds;
     mcrt_status st;
     if (n == 0) /* still built, empty, so that its bounds read as empty (light.c) */

@@ -2,6 +2,11 @@
  * bit for bit in /work/shared/research/embree-anchor.md ("Definitions"), checked against its
  * geometry hashes and hit statistics. Not a test: it prints a table.
  *
+ * Built with MCRT_HAVE_EMBREE (the Makefile does so when Debian's libembree-dev is installed), it
+ * also builds Embree 3 scenes (MEDIUM and HIGH quality) from the same triangles, traces the same
+ * rays with rtcIntersect1 / rtcOccluded1 interleaved with mcrt's runs, prints the ratio of
+ * throughputs per row and compares the answers ray by ray. Only this tool links Embree.
+ *
  *   bench [--scene sphere-1M|grid-city|spheres-16] [--quick]
  */
 #include <pthread.h>
@@ -14,6 +19,14 @@
 #include "core/rng.h"
 #include "geom/bvh.h"
 #include "geom/bvh_node.h"
+
+#ifdef MCRT_HAVE_EMBREE
+#include <embree3/rtcore.h>
+#define TRACERS 3 /* mcrt, Embree MEDIUM, Embree HIGH */
+#else
+#define TRACERS 1
+#endif
+static const char *const tracer_names[3] = {"mcrt", "Embree MEDIUM", "Embree HIGH"};
 
 /* The definitions are normative in double precision with no FMA contraction. GCC in ISO C mode
  * (-std=c99) already compiles with -ffp-contract=off and does not know this pragma; the geometry
@@ -316,9 +329,14 @@ static void make_secondary(const struct mesh *m, const struct ray_set *primary,
 /* ---- Tracing ---- */
 
 struct job {
-    const struct bvh *bvh;
+    const struct bvh *bvh;   /* mcrt's, or NULL when escene traces */
     const struct prim *prims;
+#ifdef MCRT_HAVE_EMBREE
+    RTCScene escene;
+#endif
     struct ray_set *set;
+    float *t;                /* per ray: results, as in struct ray_set */
+    uint32_t *prim;
     int occlusion;
     size_t passes, chunks;   /* work items: passes × chunks of CHUNK rays */
     size_t next;             /* next work item, taken with an atomic add */
@@ -336,21 +354,61 @@ static double clock_s(clockid_t id)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+#ifdef MCRT_HAVE_EMBREE
+/* Anchor "How it was measured": the RTCRayHit is built on the stack from the compact ray, and t
+ * and primID are written back, so that this overhead is included as in the anchor. */
+static void trace_range_embree(struct job *j, size_t begin, size_t end)
+{
+    const struct ray *rays = j->set->rays;
+    struct RTCIntersectContext ctx;
+    size_t i;
+    rtcInitIntersectContext(&ctx);
+    for (i = begin; i < end; i++) {
+        struct RTCRayHit rh;
+        memset(&rh, 0, sizeof rh);
+        rh.ray.org_x = rays[i].o.x;
+        rh.ray.org_y = rays[i].o.y;
+        rh.ray.org_z = rays[i].o.z;
+        rh.ray.dir_x = rays[i].d.x;
+        rh.ray.dir_y = rays[i].d.y;
+        rh.ray.dir_z = rays[i].d.z;
+        rh.ray.tnear = 0.0f;
+        rh.ray.tfar = rays[i].tmax;
+        rh.ray.mask = 0xFFFFFFFFu;
+        if (j->occlusion) {
+            rtcOccluded1(j->escene, &ctx, &rh.ray);
+            j->prim[i] = rh.ray.tfar < 0.0f; /* Embree sets tfar to -inf when occluded */
+        } else {
+            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            rtcIntersect1(j->escene, &ctx, &rh);
+            j->t[i] = rh.ray.tfar;
+            j->prim[i] = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? NO_HIT : rh.hit.primID;
+        }
+    }
+}
+#endif
+
 static void trace_range(struct job *j, size_t begin, size_t end)
 {
-    struct ray_set *s = j->set;
+    const struct ray *rays = j->set->rays;
     size_t i;
+#ifdef MCRT_HAVE_EMBREE
+    if (j->escene) {
+        trace_range_embree(j, begin, end);
+        return;
+    }
+#endif
     for (i = begin; i < end; i++) {
         if (j->occlusion) {
-            s->prim[i] = (uint32_t)mc_bvh_occluded(j->bvh, j->prims, &s->rays[i]);
+            j->prim[i] = (uint32_t)mc_bvh_occluded(j->bvh, j->prims, &rays[i]);
         } else {
             struct hit h;
-            if (mc_bvh_intersect(j->bvh, j->prims, &s->rays[i], &h)) {
-                s->t[i] = h.t;
+            if (mc_bvh_intersect(j->bvh, j->prims, &rays[i], &h)) {
+                j->t[i] = h.t;
                 /* The BVH reorders the primitives; material holds the original triangle index. */
-                s->prim[i] = (uint32_t)j->prims[h.prim].material;
+                j->prim[i] = (uint32_t)j->prims[h.prim].material;
             } else {
-                s->prim[i] = NO_HIT;
+                j->prim[i] = NO_HIT;
             }
         }
     }
@@ -421,22 +479,29 @@ struct timing {
 };
 
 /* Anchor "How it was measured": a warm-up pass that also calibrates, then `reps` repetitions of
- * K passes with K chosen so that a repetition lasts at least min_s; medians are reported. */
-static struct timing measure(struct job *j, int threads, int reps, double min_s)
+ * K passes with K chosen so that a repetition lasts at least min_s; medians are reported. The
+ * tracers' repetitions are interleaved, so that load from other jobs on the shared machine falls
+ * on all of them alike. */
+static void measure(struct job *j, int ntracers, int threads, int reps, double min_s,
+                    struct timing *out)
 {
-    double cpu[8], wall_rate[8], wall, pass_s;
-    size_t passes;
-    int i;
-    struct timing t;
-    run(j, threads, 1, &pass_s);
-    passes = pass_s > 0 ? (size_t)(min_s / pass_s) + 1 : 1;
-    for (i = 0; i < reps; i++) {
-        cpu[i] = run(j, threads, passes, &wall) * 1e9 / (double)(passes * j->set->count);
-        wall_rate[i] = (double)(passes * j->set->count) / wall * 1e-6;
+    double cpu[TRACERS][8], wall_rate[TRACERS][8], wall, pass_s;
+    size_t passes[TRACERS];
+    int i, k;
+    for (k = 0; k < ntracers; k++) {
+        run(&j[k], threads, 1, &pass_s);
+        passes[k] = pass_s > 0 ? (size_t)(min_s / pass_s) + 1 : 1;
     }
-    t.ns_per_ray = median(cpu, reps);
-    t.wall_mrays = median(wall_rate, reps);
-    return t;
+    for (i = 0; i < reps; i++)
+        for (k = 0; k < ntracers; k++) {
+            double n = (double)(passes[k] * j[k].set->count);
+            cpu[k][i] = run(&j[k], threads, passes[k], &wall) * 1e9 / n;
+            wall_rate[k][i] = n / wall * 1e-6;
+        }
+    for (k = 0; k < ntracers; k++) {
+        out[k].ns_per_ray = median(cpu[k], reps);
+        out[k].wall_mrays = median(wall_rate[k], reps);
+    }
 }
 
 /* ---- Statistics ---- */
@@ -476,22 +541,32 @@ static struct stats statistics(const struct ray_set *s, int occlusion)
 
 /* ---- Driver ---- */
 
+/* Agreement of a tracer's answers with mcrt's, ray by ray (anchor "How to compare"). */
+struct agreement {
+    long hit_diff;   /* hits (or occluded rays) of mcrt minus the other's */
+    size_t same;     /* rays with the same quad hit (or both missing), or the same occlusion */
+    size_t ties;     /* of the others, rays where both hit at t equal within 1e-6 relative */
+};
+
 struct row {
     const char *scene, *set;
     size_t rays;
-    struct timing one, all;
+    struct timing one[TRACERS], all[TRACERS];
+    struct agreement agree[TRACERS];
     struct stats st;
     const struct reference *ref;
 };
 
-static float half_area(const float *b)
+/* Half the surface area of child slot i of node n. */
+static float slot_half_area(const struct bvh_node *n, int i)
 {
-    float x = b[3] - b[0], y = b[4] - b[1], z = b[5] - b[2];
+    float x = n->b[3][i] - n->b[0][i], y = n->b[4][i] - n->b[1][i], z = n->b[5][i] - n->b[2][i];
     return x * y + y * z + z * x;
 }
 
-/* Depth, mean leaf size, and the SAH cost of the tree: expected inner-node visits and primitive
- * tests of a random ray that crosses the root box, without early exit (surface area heuristic). */
+/* Depth, mean leaf size, and the SAH cost of the tree: expected (8-wide) node visits and
+ * primitive tests of a random ray that crosses the root box, without early exit (surface area
+ * heuristic), comparable with Embree's "sah" statistics in the anchor. */
 struct tree_stats {
     int depth;
     double avg_leaf, sah_inner, sah_prims;
@@ -499,47 +574,118 @@ struct tree_stats {
 
 static struct tree_stats tree_stats(const struct bvh *b)
 {
-    struct { uint32_t node; int depth; } stack[128];
+    struct { uint32_t node; int depth; } stack[256];
     struct tree_stats ts = {0, 0, 0, 0};
-    int sp = 0;
+    int sp = 0, i;
     size_t leaves = 0, prims = 0;
     double root;
+    vec3 e = v3_sub(b->bounds.hi, b->bounds.lo);
     if (b->node_count == 0)
         return ts;
-    root = half_area(b->nodes[0].b);
+    root = (double)e.x * e.y + (double)e.y * e.z + (double)e.z * e.x;
+    ts.sah_inner = 1.0; /* the root */
     stack[sp].node = 0;
-    stack[sp++].depth = 0;
+    stack[sp++].depth = 1;
     while (sp > 0) {
         const struct bvh_node *n = &b->nodes[stack[--sp].node];
         int d = stack[sp].depth;
-        double p = half_area(n->b) / root;
         if (d > ts.depth)
             ts.depth = d;
-        if (n->count) {
-            leaves++;
-            prims += n->count;
-            ts.sah_prims += p * n->count;
-            continue;
+        for (i = 0; i < BVH_WIDTH; i++) {
+            double p;
+            if (n->b[0][i] == INFINITY)
+                continue;
+            p = slot_half_area(n, i) / root;
+            if (n->count[i]) {
+                leaves++;
+                prims += n->count[i];
+                ts.sah_prims += p * n->count[i];
+                continue;
+            }
+            ts.sah_inner += p;
+            stack[sp].node = n->child[i];
+            stack[sp++].depth = d + 1;
         }
-        ts.sah_inner += p;
-        stack[sp].node = n->index;
-        stack[sp++].depth = d + 1;
-        stack[sp].node = n->index + 1;
-        stack[sp++].depth = d + 1;
     }
     ts.avg_leaf = (double)prims / (double)leaves;
     return ts;
 }
 
+#ifdef MCRT_HAVE_EMBREE
+/* One Embree scene of one triangle mesh (float3 vertices, uint3 indices) at the given quality,
+ * built `builds` times as in the anchor; prints the median build times. */
+static RTCScene embree_scene(RTCDevice dev, const struct mesh *m, enum RTCBuildQuality q,
+                             const char *label, int builds)
+{
+    double wall[3], cpu[3];
+    RTCScene sc = NULL;
+    int i;
+    for (i = 0; i < builds; i++) {
+        RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
+        double w0, c0;
+        float *v = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                           3 * sizeof(float), m->nv);
+        unsigned *ix = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                               3 * sizeof(unsigned), m->nt);
+        memcpy(v, m->v, m->nv * 3 * sizeof *v);
+        memcpy(ix, m->ix, m->nt * 3 * sizeof *ix);
+        rtcSetGeometryBuildQuality(g, q);
+        rtcCommitGeometry(g);
+        if (sc)
+            rtcReleaseScene(sc);
+        sc = rtcNewScene(dev);
+        rtcSetSceneBuildQuality(sc, q);
+        rtcAttachGeometry(sc, g);
+        rtcReleaseGeometry(g);
+        w0 = clock_s(CLOCK_MONOTONIC);
+        c0 = clock_s(CLOCK_PROCESS_CPUTIME_ID);
+        rtcCommitScene(sc);
+        cpu[i] = (clock_s(CLOCK_PROCESS_CPUTIME_ID) - c0) * 1e3;
+        wall[i] = (clock_s(CLOCK_MONOTONIC) - w0) * 1e3;
+    }
+    printf("%-11s %9zu %-36s %9.1f %9.1f %9.0f\n", "", m->nt, label, median(wall, builds),
+           median(cpu, builds), median(cpu, builds) * 1e6 / (double)m->nt);
+    fflush(stdout);
+    return sc;
+}
+#endif
+
+/* Per ray: whether the other tracer gave the same answer as mcrt (the same quad, both missing,
+ * or the same occlusion). */
+static struct agreement agreement(const struct job *mine, const struct job *other)
+{
+    struct agreement a = {0, 0, 0};
+    size_t i;
+    for (i = 0; i < mine->set->count; i++) {
+        uint32_t p = mine->prim[i], q = other->prim[i];
+        int hp = mine->occlusion ? p != 0 : p != NO_HIT, hq = other->occlusion ? q != 0 : q != NO_HIT;
+        a.hit_diff += hp - hq;
+        if (mine->occlusion ? p == q : hp == hq && (!hp || p >> 1 == q >> 1))
+            a.same++;
+        else if (!mine->occlusion && hp && hq
+                 && fabs((double)mine->t[i] - other->t[i]) <= 1e-6 * mine->t[i])
+            a.ties++;
+    }
+    return a;
+}
+
 static int bench_scene(const struct scene_def *sd, int threads, int quick, struct row *rows)
 {
+    struct job j[TRACERS];
+    float *tbuf[TRACERS];
+    uint32_t *pbuf[TRACERS];
+    int ntracers = TRACERS, e;
+#ifdef MCRT_HAVE_EMBREE
+    RTCDevice dev;
+    RTCScene esc[2];
+#endif
     struct mesh m;
     struct prim *prims, *orig;
     struct bvh b;
     struct ray_set sets[SET_COUNT];
     mc_diag d;
     double build_wall[3], build_cpu[3];
-    int builds = quick ? 1 : 3, reps = quick ? 1 : 3, i;
+    int builds = quick ? 1 : 3, reps = quick ? 1 : 3, i, bt;
     double min_s = quick ? 0.05 : 0.25;
     struct tree_stats ts;
     uint64_t gh;
@@ -566,56 +712,91 @@ static int bench_scene(const struct scene_def *sd, int threads, int quick, struc
             orig[k].p[c] = v3(v[0], v[1], v[2]);
         }
     }
-    for (i = 0; i < builds; i++) {
-        double w0, c0;
-        memcpy(prims, orig, m.nt * sizeof *prims);
-        if (i > 0)
-            mc_bvh_free(&b);
-        w0 = clock_s(CLOCK_MONOTONIC);
-        c0 = clock_s(CLOCK_PROCESS_CPUTIME_ID);
-        if (mc_bvh_build(&b, prims, m.nt, &d) != MCRT_OK) {
-            fprintf(stderr, "bench: %s: %s\n", sd->name, d.msg);
-            return 0;
+    /* One build thread, then all (the last build is the one traced). */
+    for (bt = 0; bt < 2; bt++) {
+        for (i = 0; i < builds; i++) {
+            double w0, c0;
+            memcpy(prims, orig, m.nt * sizeof *prims);
+            if (bt > 0 || i > 0)
+                mc_bvh_free(&b);
+            w0 = clock_s(CLOCK_MONOTONIC);
+            c0 = clock_s(CLOCK_PROCESS_CPUTIME_ID);
+            if (mc_bvh_build_threads(&b, prims, NULL, m.nt, bt == 0 ? 1 : threads, &d) != MCRT_OK) {
+                fprintf(stderr, "bench: %s: %s\n", sd->name, d.msg);
+                return 0;
+            }
+            build_cpu[i] = (clock_s(CLOCK_PROCESS_CPUTIME_ID) - c0) * 1e3;
+            build_wall[i] = (clock_s(CLOCK_MONOTONIC) - w0) * 1e3;
         }
-        build_cpu[i] = (clock_s(CLOCK_PROCESS_CPUTIME_ID) - c0) * 1e3;
-        build_wall[i] = (clock_s(CLOCK_MONOTONIC) - w0) * 1e3;
+        ts = tree_stats(&b);
+        {
+            double cpu = median(build_cpu, builds), wall = median(build_wall, builds);
+            printf("%-11s %9zu %9zu %5d %8.2f %6.1f %6.1f %10.1f %9.1f %9.1f %9.0f  mcrt, %d thr\n",
+                   sd->name, m.nt, b.node_count, ts.depth, ts.avg_leaf, ts.sah_inner, ts.sah_prims,
+                   (double)(b.node_count * sizeof(struct bvh_node) + m.nt * sizeof(struct prim)) /
+                       (double)m.nt,
+                   wall, cpu, cpu * 1e6 / (double)m.nt, bt == 0 ? 1 : threads);
+            fflush(stdout);
+        }
     }
     free(orig);
-    ts = tree_stats(&b);
-    {
-        double cpu = median(build_cpu, builds), wall = median(build_wall, builds);
-        printf("%-11s %9zu %9zu %5d %8.2f %6.1f %6.1f %10.1f %9.1f %9.1f %9.0f\n", sd->name, m.nt,
-               b.node_count, ts.depth, ts.avg_leaf, ts.sah_inner, ts.sah_prims,
-               (double)(b.node_count * sizeof(struct bvh_node) + m.nt * sizeof(struct prim)) /
-                   (double)m.nt,
-               wall, cpu, cpu * 1e6 / (double)m.nt);
-        fflush(stdout);
+
+#ifdef MCRT_HAVE_EMBREE
+    /* One build thread, as mcrt's build; tracing threads are the benchmark's own pthreads. */
+    dev = rtcNewDevice("threads=1");
+    if (!dev) {
+        fprintf(stderr, "bench: rtcNewDevice failed\n");
+        return 0;
     }
+    esc[0] = embree_scene(dev, &m, RTC_BUILD_QUALITY_MEDIUM, "Embree 3 MEDIUM, 1 thread", builds);
+    esc[1] = embree_scene(dev, &m, RTC_BUILD_QUALITY_HIGH, "Embree 3 HIGH, 1 thread", builds);
+#endif
 
     for (i = 0; i < SET_COUNT; i++)
         set_alloc(&sets[i]);
+    for (e = 0; e < ntracers; e++) {
+        tbuf[e] = e == 0 ? NULL : xmalloc(PIXELS * sizeof *tbuf[e]);
+        pbuf[e] = e == 0 ? NULL : xmalloc(PIXELS * sizeof *pbuf[e]);
+    }
     make_primary(&sets[SET_PRIMARY]);
     for (i = 0; i < SET_COUNT; i++) {
-        struct job j;
         struct row *r = &rows[i];
         double wall;
         if (i == SET_DIFFUSE)
             make_secondary(&m, &sets[SET_PRIMARY], &sets[SET_DIFFUSE], &sets[SET_SHADOW]);
-        j.bvh = &b;
-        j.prims = prims;
-        j.set = &sets[i];
-        j.occlusion = i == SET_SHADOW;
-        run(&j, 1, 1, &wall); /* the results the statistics and the next sets are made from */
+        for (e = 0; e < ntracers; e++) {
+            j[e].bvh = &b;
+            j[e].prims = prims;
+#ifdef MCRT_HAVE_EMBREE
+            j[e].escene = e == 0 ? NULL : esc[e - 1];
+#endif
+            j[e].set = &sets[i];
+            j[e].t = e == 0 ? sets[i].t : tbuf[e];
+            j[e].prim = e == 0 ? sets[i].prim : pbuf[e];
+            j[e].occlusion = i == SET_SHADOW;
+            /* mcrt's results are the ones the statistics and the next ray sets are made from. */
+            run(&j[e], 1, 1, &wall);
+            r->agree[e] = agreement(&j[0], &j[e]);
+        }
         r->scene = sd->name;
         r->set = set_names[i];
         r->rays = sets[i].count;
-        r->st = statistics(&sets[i], j.occlusion);
+        r->st = statistics(&sets[i], j[0].occlusion);
         r->ref = &sd->ref[i];
-        r->one = measure(&j, 1, reps, min_s);
-        r->all = measure(&j, threads, reps, min_s);
+        measure(j, ntracers, 1, reps, min_s, r->one);
+        measure(j, ntracers, threads, reps, min_s, r->all);
     }
     for (i = 0; i < SET_COUNT; i++)
         set_free(&sets[i]);
+    for (e = 1; e < ntracers; e++) {
+        free(tbuf[e]);
+        free(pbuf[e]);
+    }
+#ifdef MCRT_HAVE_EMBREE
+    rtcReleaseScene(esc[0]);
+    rtcReleaseScene(esc[1]);
+    rtcReleaseDevice(dev);
+#endif
     mc_bvh_free(&b);
     free(prims);
     free(m.v);
@@ -660,10 +841,16 @@ int main(int argc, char **argv)
     if (!self_check())
         return 1;
     threads = ncpu < 1 ? 1 : ncpu > 64 ? 64 : (int)ncpu;
-    printf("mcrt BVH benchmark: binary BVH, %zu-byte nodes, %zu-byte primitives, single rays; "
-           "%d threads; %s\n", sizeof(struct bvh_node), sizeof(struct prim), threads,
+    printf("mcrt BVH benchmark: %d-wide BVH, %zu-byte nodes, %zu-byte primitives, single rays; "
+           "%d threads; %s\n", BVH_WIDTH, sizeof(struct bvh_node), sizeof(struct prim), threads,
            quick ? "quick (1 repetition of >= 0.05 s)" : "medians of 3 repetitions of >= 0.25 s");
-    printf("geometry hashes and PCG32 first outputs verified against the anchor definitions\n\n");
+    printf("geometry hashes and PCG32 first outputs verified against the anchor definitions\n");
+#ifdef MCRT_HAVE_EMBREE
+    printf("Embree %s traced on the same rays, interleaved; mcrt/other is the throughput ratio "
+           "(> 1: mcrt faster)\n\n", RTC_VERSION_STRING);
+#else
+    printf("Embree comparison not built (install libembree-dev and rebuild)\n\n");
+#endif
     printf("%-11s %9s %9s %5s %8s %6s %6s %10s %9s %9s %9s\n", "build", "triangles", "nodes",
            "depth", "avg leaf", "SAH in", "SAH pr", "bytes/tri", "wall ms", "CPU ms", "CPU ns/tri");
     for (s = 0; s < SCENE_COUNT; s++) {
@@ -678,15 +865,35 @@ int main(int argc, char **argv)
         return 2;
     }
 
-    printf("\n%-11s %-8s %9s | %-31s | %-31s\n", "trace", "set", "rays", "1 thread",
-           "all threads");
-    printf("%-11s %-8s %9s | %9s %10s %10s | %9s %10s %10s\n", "", "", "", "Mrays/s/c",
-           "CPU ns/ray", "wall Mr/s", "Mrays/s/c", "CPU ns/ray", "wall Mr/s");
+    printf("\n%-11s %-8s %-13s %9s | %-31s | %-31s | %-13s | %s\n", "trace", "set", "tracer",
+           "rays", "1 thread", "all threads", "mcrt/other", "answers vs mcrt");
+    printf("%-11s %-8s %-13s %9s | %9s %10s %10s | %9s %10s %10s | %6s %6s | %9s %8s %7s\n", "", "",
+           "", "", "Mrays/s/c", "CPU ns/ray", "wall Mr/s", "Mrays/s/c", "CPU ns/ray", "wall Mr/s",
+           "1 thr", "all", "hit diff", "same %", "ties %");
     for (i = 0; i < nrows; i++) {
         const struct row *r = &rows[i];
-        printf("%-11s %-8s %9zu | %9.2f %10.1f %10.2f | %9.2f %10.1f %10.2f\n", r->scene, r->set,
-               r->rays, 1e3 / r->one.ns_per_ray, r->one.ns_per_ray, r->one.wall_mrays,
-               1e3 / r->all.ns_per_ray, r->all.ns_per_ray, r->all.wall_mrays);
+        int e;
+        for (e = 0; e < TRACERS; e++) {
+            printf("%-11s %-8s %-13s %9zu | %9.2f %10.1f %10.2f | %9.2f %10.1f %10.2f", r->scene,
+                   r->set, tracer_names[e], r->rays, 1e3 / r->one[e].ns_per_ray,
+                   r->one[e].ns_per_ray, r->one[e].wall_mrays, 1e3 / r->all[e].ns_per_ray,
+                   r->all[e].ns_per_ray, r->all[e].wall_mrays);
+            if (e == 0) {
+                printf("\n");
+                continue;
+            }
+            /* Acceptance (anchor "How to compare another renderer"): hit count within 0.02% of
+             * the rays, the same quad (or occlusion) on at least 99.98% of them. */
+            {
+                double dh = 100.0 * (double)r->agree[e].hit_diff / (double)r->rays;
+                double same = 100.0 * (double)r->agree[e].same / (double)r->rays;
+                double ties = 100.0 * (double)r->agree[e].ties / (double)r->rays;
+                printf(" | %6.2f %6.2f | %+8.4f%% %7.3f%% %6.3f%% %s\n",
+                       r->one[e].ns_per_ray / r->one[0].ns_per_ray,
+                       r->all[e].ns_per_ray / r->all[0].ns_per_ray, dh, same, ties,
+                       fabs(dh) <= 0.02 && same >= 99.98 ? "ok" : "OUT");
+            }
+        }
     }
 
     /* Acceptance (anchor "How to compare another renderer"): hit count within 0.02% of the rays,

@@ -1,5 +1,7 @@
 /* test_bvh.c: the BVH against brute force (nearest hit and occlusion), its structural invariants,
- * and degenerate inputs (empty scene, coinciding centroids, coplanar triangles, NaN rays). */
+ * and degenerate inputs (empty scene, one leaf, coinciding centroids, coplanar triangles, NaN
+ * rays). Built twice: with the library's node test (SIMD where available) as test_bvh, and with
+ * the portable C99 node test as test_bvh_portable. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -92,55 +94,102 @@ static int brute_intersect(const struct prim *prims, const struct aabb *boxes, s
     return found;
 }
 
-/* Walk the tree and check: child boxes inside their parent's, every primitive's bounds inside
- * its leaf's box, the leaves cover [0, n) exactly once in depth-first order, and the depth bound
- * the traversal stack relies on. Returns the number of violations; *depth gets the maximum. */
+/* Whether box (lo, hi) lies within slot i of node n (the parent's box for that child). */
+static int box_outside(const float *lo, const float *hi, const struct bvh_node *n, int i)
+{
+    int a;
+    for (a = 0; a < 3; a++)
+        if (lo[a] < n->b[a][i] || hi[a] > n->b[a + 3][i])
+            return 1;
+    return 0;
+}
+
+/* Walk the wide tree and check: every child box inside its parent's slot box, every primitive's
+ * bounds inside its leaf's box, the leaves cover [0, n) exactly once, unused slots (empty boxes)
+ * only after the used ones, child nodes after their parent (pre-order) and each reached once, and
+ * the depth bound the traversal stack relies on. Returns the number of violations; *depth gets the
+ * maximum. */
 static int check_tree(const struct bvh *b, const struct prim *prims, size_t n, int *depth)
 {
-    struct { uint32_t node; int depth; } stack[128];
+    struct { uint32_t node; int depth; } stack[256];
+    unsigned char *covered, *reached;
     int sp = 0, bad = 0;
-    uint32_t next_prim = 0;
+    size_t k;
     *depth = 0;
     if (n == 0)
         return b->node_count != 0;
+    if (b->node_count == 0)
+        return 1;
+    covered = calloc(n, 1);
+    reached = calloc(b->node_count, 1);
     stack[sp].node = 0;
     stack[sp].depth = 0;
     sp++;
     while (sp > 0) {
         const struct bvh_node *nd;
-        int dep;
-        uint32_t k, c[2];
+        int dep, i, used = 0, empty_seen = 0;
+        uint32_t self;
         sp--;
-        nd = &b->nodes[stack[sp].node];
+        self = stack[sp].node;
+        nd = &b->nodes[self];
         dep = stack[sp].depth;
+        bad += reached[self]++ != 0;
         if (dep > *depth)
             *depth = dep;
-        if (nd->count > 0) {
-            bad += nd->index != next_prim;
-            for (k = nd->index; k < nd->index + nd->count && k < n; k++) {
-                struct aabb pb = mc_prim_bounds(&prims[k]);
-                bad += pb.lo.x < nd->b[0] || pb.lo.y < nd->b[1] || pb.lo.z < nd->b[2] ||
-                       pb.hi.x > nd->b[3] || pb.hi.y > nd->b[4] || pb.hi.z > nd->b[5];
+        for (i = 0; i < BVH_WIDTH; i++) {
+            int empty = nd->b[0][i] == INFINITY;
+            if (empty) {
+                bad += nd->b[3][i] != -INFINITY || nd->count[i] != 0;
+                empty_seen = 1;
+                continue;
             }
-            next_prim += nd->count;
-            continue;
-        }
-        c[0] = nd->index;
-        c[1] = nd->index + 1;
-        if (c[1] >= b->node_count || sp + 2 > 128)
-            return bad + 1;
-        /* Push right then left so leaves are met in depth-first (left to right) order. */
-        for (k = 2; k-- > 0;) {
-            const struct bvh_node *ch = &b->nodes[c[k]];
-            int a;
-            for (a = 0; a < 3; a++)
-                bad += ch->b[a] < nd->b[a] || ch->b[a + 3] > nd->b[a + 3];
-            stack[sp].node = c[k];
+            bad += empty_seen; /* a used slot after an unused one */
+            used++;
+            if (nd->count[i] > 0) {
+                uint32_t first = nd->child[i];
+                for (k = first; k < first + nd->count[i]; k++) {
+                    struct aabb pb = mc_prim_bounds(&prims[k < n ? k : 0]);
+                    const float lo[3] = {pb.lo.x, pb.lo.y, pb.lo.z}, hi[3] = {pb.hi.x, pb.hi.y, pb.hi.z};
+                    if (k >= n) {
+                        bad++;
+                        continue;
+                    }
+                    bad += covered[k]++ != 0;
+                    bad += box_outside(lo, hi, nd, i);
+                }
+                continue;
+            }
+            if (nd->child[i] <= self || nd->child[i] >= b->node_count || sp + 1 > 256) {
+                bad++;
+                continue;
+            }
+            {
+                const struct bvh_node *ch = &b->nodes[nd->child[i]];
+                int j, a;
+                for (j = 0; j < BVH_WIDTH; j++) {
+                    float lo[3], hi[3];
+                    if (ch->b[0][j] == INFINITY)
+                        continue;
+                    for (a = 0; a < 3; a++) {
+                        lo[a] = ch->b[a][j];
+                        hi[a] = ch->b[a + 3][j];
+                    }
+                    bad += box_outside(lo, hi, nd, i);
+                }
+            }
+            stack[sp].node = nd->child[i];
             stack[sp].depth = dep + 1;
             sp++;
         }
+        bad += used == 0;
     }
-    return bad + (next_prim != n);
+    for (k = 0; k < n; k++)
+        bad += covered[k] != 1;
+    for (k = 0; k < b->node_count; k++)
+        bad += reached[k] != 1;
+    free(covered);
+    free(reached);
+    return bad;
 }
 
 /* A heightfield over [-1,1]² (a wavy, mostly-connected mesh), triangles floating above it, and a
@@ -376,9 +425,69 @@ static void test_bad_rays(void)
     mc_bvh_free(&b);
 }
 
+/* One or two primitives make a binary tree that is a single leaf: the wide root holds it alone. */
+static void test_single_leaf(void)
+{
+    struct prim prims[2];
+    struct bvh b;
+    struct ray r;
+    struct hit h;
+    mc_diag d;
+    int depth, n;
+    for (n = 1; n <= 2; n++) {
+        prims[0] = triangle(v3(-1.0f, -1.0f, 0.0f), v3(1.0f, -1.0f, 0.0f), v3(0.0f, 1.0f, 0.0f));
+        prims[1] = triangle(v3(-1.0f, -1.0f, 1.0f), v3(1.0f, -1.0f, 1.0f), v3(0.0f, 1.0f, 1.0f));
+        T_CHECK(mc_bvh_build(&b, prims, (size_t)n, &d) == MCRT_OK, "build: %s", d.msg);
+        T_CHECK(b.node_count == 1 && check_tree(&b, prims, (size_t)n, &depth) == 0,
+                "%d prims: %zu nodes, tree invariants", n, b.node_count);
+        r.o = v3(0.0f, 0.0f, 5.0f);
+        r.d = v3(0.0f, 0.0f, -1.0f);
+        r.tmax = INFINITY;
+        /* Exact: the planes z = 1 and z = 0 are 4 and 5 away along an axis ray. */
+        T_CHECK(mc_bvh_intersect(&b, prims, &r, &h) && h.t == (n == 2 ? 4.0f : 5.0f),
+                "%d prims: nearest hit", n);
+        r.d = v3(0.0f, 0.0f, 1.0f);
+        T_CHECK(!mc_bvh_occluded(&b, prims, &r), "%d prims: ray away from them", n);
+        mc_bvh_free(&b);
+    }
+}
+
+/* The parallel build (subtrees on several threads, appended in order) must give the same tree and
+ * primitive order as the one-thread build, byte for byte, whatever the number of threads. */
+static void test_parallel_build_same(void)
+{
+    struct prim *p1 = malloc(10200 * sizeof *p1), *p2 = malloc(10200 * sizeof *p2);
+    struct bvh b1, b2;
+    mc_diag d;
+    pcg32 g;
+    size_t n;
+    int threads;
+    pcg32_seed(&g, 7, 1);
+    n = make_scene(p1, &g);
+    memcpy(p2, p1, n * sizeof *p1);
+    T_CHECK(mc_bvh_build_threads(&b1, p1, NULL, n, 1, &d) == MCRT_OK, "build: %s", d.msg);
+    for (threads = 2; threads <= 5; threads += 3) {
+        struct prim *q = malloc(n * sizeof *q);
+        memcpy(q, p2, n * sizeof *q);
+        T_CHECK(mc_bvh_build_threads(&b2, q, NULL, n, threads, &d) == MCRT_OK, "build: %s", d.msg);
+        T_CHECK(b1.node_count == b2.node_count
+                    && memcmp(b1.nodes, b2.nodes, b1.node_count * sizeof *b1.nodes) == 0
+                    && memcmp(p1, q, n * sizeof *q) == 0,
+                "%d threads: %zu nodes, 1 thread: %zu; same nodes and order", threads,
+                b2.node_count, b1.node_count);
+        mc_bvh_free(&b2);
+        free(q);
+    }
+    mc_bvh_free(&b1);
+    free(p1);
+    free(p2);
+}
+
 int main(void)
 {
     test_empty();
+    test_parallel_build_same();
+    test_single_leaf();
     test_against_brute_force();
     test_coincident_centroids();
     test_coplanar();

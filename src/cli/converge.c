@@ -1,0 +1,326 @@
+/* converge.c: the `mcrt converge` command: render a scene at a ladder of budgets (spp or seconds),
+ * each with a fresh seed, measure each render's error against a reference with mcrt_diff and its
+ * own estimate, and write a CSV and a log-log plot of relative MSE against seconds (gnuplot). */
+#include "cli/converge.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "cli/args.h"
+#include "mcrt.h"
+
+enum { EXIT_OK = 0, EXIT_FAIL = 1, EXIT_USAGE = 2, MAX_RUNGS = 32, MAX_VARIANTS = 8 };
+
+static const char usage[] =
+    "usage: mcrt converge [options] SCENE\n"
+    "Render SCENE at a ladder of budgets, each with a fresh seed, and write DIR/NAME-converge.csv\n"
+    "(estimator, sampler, spp, seconds, MSE, relMSE, estimated relMSE) and a log-log plot of\n"
+    "relMSE against seconds, DIR/NAME-converge.png (with gnuplot, if installed).\n"
+    "\n"
+    "options:\n"
+    "  --ref FILE          the reference image (default: a render at 16 times the largest\n"
+    "                      budget with another seed, written to DIR/NAME-ref.pfm)\n"
+    "  --spp LIST          the ladder in samples per pixel, comma-separated (default: 1,4,16,64)\n"
+    "  --times LIST        the ladder in seconds instead (progressive passes of 1 spp)\n"
+    "  --compare KEY=LIST  one curve per value: integrator=path,direct or\n"
+    "                      sampler=random,stratified,sobol\n"
+    "  -o DIR              the folder to write into (default: the current folder)\n"
+    "  --threads N         worker threads; 0 means one per core (default: 0)\n"
+    "  --seed N            the first seed (default: 0)\n"
+    "  --quiet             print nothing but errors\n";
+
+enum { OPT_REF, OPT_SPP, OPT_TIMES, OPT_COMPARE, OPT_OUTPUT, OPT_THREADS, OPT_SEED, OPT_QUIET,
+       OPT_HELP, OPT_END };
+static const struct arg_spec options[OPT_END + 1] = {
+    [OPT_REF] = {"ref", 0, 1},         [OPT_SPP] = {"spp", 0, 1},
+    [OPT_TIMES] = {"times", 0, 1},     [OPT_COMPARE] = {"compare", 0, 1},
+    [OPT_OUTPUT] = {NULL, 'o', 1},     [OPT_THREADS] = {"threads", 0, 1},
+    [OPT_SEED] = {"seed", 0, 1},       [OPT_QUIET] = {"quiet", 0, 0},
+    [OPT_HELP] = {"help", 'h', 0},     [OPT_END] = {NULL, 0, 0}};
+
+struct converge {
+    const char *scene, *ref, *dir, *key; /* key: "integrator", "sampler" or NULL */
+    char *values[MAX_VARIANTS];          /* the compared values (strdup'ed) */
+    int nvalues, nrungs, threads, quiet, by_time;
+    double rungs[MAX_RUNGS];
+    uint64_t seed;
+};
+
+/* "a,b,c" of positive numbers into c->rungs. */
+static int parse_ladder(const char *name, const char *text, struct converge *c)
+{
+    char buf[32];
+    const char *p = text;
+    c->nrungs = 0;
+    while (*p) {
+        size_t len = strcspn(p, ",");
+        if (len == 0 || len >= sizeof buf || c->nrungs == MAX_RUNGS) {
+            fprintf(stderr, "mcrt: --%s: expected up to %d comma-separated numbers, got '%s'\n",
+                    name, MAX_RUNGS, text);
+            return 0;
+        }
+        memcpy(buf, p, len);
+        buf[len] = '\0';
+        if (!mc_args_real(name, buf, 1, 0, &c->rungs[c->nrungs]))
+            return 0;
+        if (!c->by_time && (c->rungs[c->nrungs] != (int)c->rungs[c->nrungs])) {
+            fprintf(stderr, "mcrt: --spp: '%s' is not a whole number\n", buf);
+            return 0;
+        }
+        c->nrungs++;
+        p += len + (p[len] == ',');
+    }
+    return c->nrungs > 0;
+}
+
+/* "integrator=path,direct" or "sampler=random,stratified,sobol". */
+static int parse_compare(const char *text, struct converge *c)
+{
+    const char *eq = strchr(text, '='), *p;
+    if (!eq || (strncmp(text, "integrator=", 11) != 0 && strncmp(text, "sampler=", 8) != 0) ||
+        !eq[1]) {
+        fprintf(stderr, "mcrt: --compare: expected integrator=LIST or sampler=LIST, got '%s'\n",
+                text);
+        return 0;
+    }
+    c->key = text[0] == 'i' ? "integrator" : "sampler";
+    p = eq + 1;
+    while (*p && c->nvalues < MAX_VARIANTS) {
+        size_t len = strcspn(p, ",");
+        char *v = malloc(len + 1);
+        if (!v)
+            return 0;
+        memcpy(v, p, len);
+        v[len] = '\0';
+        c->values[c->nvalues++] = v;
+        p += len + (p[len] == ',');
+    }
+    return 1;
+}
+
+/* DIR/NAME-SUFFIX, NAME being the scene file's name without folder and suffix. */
+static char *out_path(const struct converge *c, const char *suffix)
+{
+    const char *base = strrchr(c->scene, '/'), *dot;
+    size_t len;
+    char *out;
+    base = base ? base + 1 : c->scene;
+    dot = strrchr(base, '.');
+    len = dot && dot != base ? (size_t)(dot - base) : strlen(base);
+    out = malloc(strlen(c->dir) + len + strlen(suffix) + 3);
+    if (out)
+        sprintf(out, "%s/%.*s-%s", c->dir, (int)len, base, suffix);
+    return out;
+}
+
+/* Render with o and save to path; prints why and returns 0 on failure. */
+static int render_to(const mcrt_scene *s, const mcrt_options *o, const char *path,
+                     mcrt_stats *st)
+{
+    mcrt_render *r = mcrt_render_new(s, o);
+    int ok = r && mcrt_render_run(r) == MCRT_OK && mcrt_render_save(r, path) == MCRT_OK;
+    if (!ok)
+        fprintf(stderr, "mcrt: %s\n", r ? mcrt_render_error(r) : "out of memory");
+    else
+        mcrt_render_stats(r, st);
+    mcrt_render_free(r);
+    return ok;
+}
+
+/* The options of rung i (0-based) of variant v: a fresh seed per rung. */
+static void rung_options(const struct converge *c, int v, int i, mcrt_options *o)
+{
+    mcrt_options_init(o);
+    o->threads = c->threads;
+    o->seed = c->seed + (uint64_t)i;
+    if (c->by_time) {
+        o->spp = 1;
+        o->time_budget = c->rungs[i];
+    } else
+        o->spp = (int)c->rungs[i];
+    if (c->key && c->key[0] == 'i')
+        o->integrator = c->values[v];
+    else if (c->key)
+        o->sampler = c->values[v];
+}
+
+/* A gnuplot script drawing one curve per variant from the CSV. */
+static int write_plot(const struct converge *c, const char *csv, const char *gp, const char *png)
+{
+    FILE *f = fopen(gp, "w");
+    int v, n = c->key ? c->nvalues : 1;
+    if (!f)
+        return 0;
+    fprintf(f, "set terminal pngcairo size 800,600\nset output '%s'\n"
+               "set datafile separator ','\nset logscale xy\nset grid\n"
+               "set xlabel 'seconds'\nset ylabel 'relative MSE'\nset key top right\n"
+               "plot ", png);
+    for (v = 0; v < n; v++) {
+        /* The rows of variant v: the estimator is the first column, the sampler the second. */
+        char pat[80] = ",";
+        if (c->key)
+            snprintf(pat, sizeof pat, "%s%s,", c->key[0] == 'i' ? "^" : ",", c->values[v]);
+        fprintf(f, "%s'< grep -v -e ^# -e ^estimator %s | grep %s' using 4:6 with linespoints "
+                   "title '%s'",
+                v ? ", \\\n     " : "", csv, pat, c->key ? c->values[v] : "render");
+    }
+    fprintf(f, "\n");
+    return fclose(f) == 0;
+}
+
+static int run(struct converge *c)
+{
+    mcrt_scene *s = mcrt_scene_new();
+    mcrt_diff_options dopt;
+    mcrt_diff_result dr;
+    mcrt_options o;
+    mcrt_stats st;
+    char *csv = out_path(c, "converge.csv"), *tmp = out_path(c, "converge-tmp.pfm");
+    char *gp = out_path(c, "converge.gp"), *png = out_path(c, "converge.png"), *ref = NULL;
+    char err[512];
+    FILE *f = NULL;
+    int v, i, code = EXIT_FAIL, n = c->key ? c->nvalues : 1;
+    double top = 0.0;
+
+    if (!s || !csv || !tmp || !gp || !png) {
+        fprintf(stderr, "mcrt: out of memory\n");
+        goto done;
+    }
+    if (mcrt_scene_load_file(s, c->scene) != MCRT_OK) {
+        fprintf(stderr, "%s\n", mcrt_scene_error(s));
+        code = EXIT_USAGE;
+        goto done;
+    }
+    if (!(f = fopen(csv, "w"))) {
+        fprintf(stderr, "mcrt: cannot write '%s'\n", csv);
+        goto done;
+    }
+    for (i = 0; i < c->nrungs; i++)
+        top = c->rungs[i] > top ? c->rungs[i] : top;
+    if (c->ref)
+        fprintf(f, "# reference: %s\n", c->ref);
+    else {
+        /* 16 times the largest budget with a seed no rung uses: its own relMSE is about 1/16 of
+         * the best rung's. */
+        if (!(ref = out_path(c, "ref.pfm")))
+            goto done;
+        rung_options(c, 0, 0, &o);
+        o.seed = c->seed + 1000003;
+        o.integrator = c->key && c->key[0] == 'i' ? "path" : NULL;
+        o.sampler = NULL;
+        if (c->by_time)
+            o.time_budget = 16.0 * top;
+        else
+            o.spp = (int)(16.0 * top);
+        if (!c->quiet)
+            fprintf(stderr, "mcrt: rendering the reference %s\n", ref);
+        if (!render_to(s, &o, ref, &st))
+            goto done;
+        fprintf(f, "# reference: a render of %d spp, seed %llu, %.3f s (no --ref given): %s\n",
+                st.spp, (unsigned long long)o.seed, st.seconds, ref);
+    }
+    fprintf(f, "estimator,sampler,spp,seconds,mse,relmse,est_relmse\n");
+    mcrt_diff_options_init(&dopt);
+    for (v = 0; v < n; v++)
+        for (i = 0; i < c->nrungs; i++) {
+            rung_options(c, v, i, &o);
+            if (!render_to(s, &o, tmp, &st))
+                goto done;
+            if (mcrt_diff(tmp, c->ref ? c->ref : ref, &dopt, &dr, err, sizeof err) != MCRT_OK) {
+                fprintf(stderr, "mcrt: %s\n", err);
+                code = EXIT_USAGE;
+                goto done;
+            }
+            fprintf(f, "%s,%s,%d,%.6g,%.6g,%.6g,%.6g\n",
+                    o.integrator ? o.integrator : "scene", o.sampler ? o.sampler : "scene",
+                    st.spp, st.seconds, dr.whole.mse, dr.whole.relmse, st.est_relmse);
+            if (!c->quiet)
+                fprintf(stderr, "%s %s: %d spp, %.3f s, relMSE %.4g (estimated %.4g)\n",
+                        o.integrator ? o.integrator : "", o.sampler ? o.sampler : "", st.spp,
+                        st.seconds, dr.whole.relmse, st.est_relmse);
+        }
+    if (fclose(f) != 0) {
+        f = NULL;
+        fprintf(stderr, "mcrt: cannot write '%s'\n", csv);
+        goto done;
+    }
+    f = NULL;
+    code = EXIT_OK;
+    if (!write_plot(c, csv, gp, png))
+        fprintf(stderr, "mcrt: cannot write '%s'\n", gp);
+    else {
+        char *cmd = malloc(strlen(gp) + 64);
+        if (cmd) {
+            sprintf(cmd, "gnuplot '%s' 2>/dev/null", gp);
+            if (system(cmd) != 0)
+                fprintf(stderr, "mcrt: gnuplot failed or is not installed: no %s (the CSV "
+                                "and %s are written)\n", png, gp);
+            else if (!c->quiet)
+                fprintf(stderr, "mcrt: wrote %s and %s\n", csv, png);
+            free(cmd);
+        }
+    }
+done:
+    if (f)
+        fclose(f);
+    if (tmp)
+        unlink(tmp);
+    free(csv);
+    free(tmp);
+    free(gp);
+    free(png);
+    free(ref);
+    mcrt_scene_free(s);
+    return code;
+}
+
+int mc_cli_converge(int argc, char **argv)
+{
+    struct arg_parser p;
+    struct converge c;
+    const char *v;
+    int opt, i, code, ok;
+    memset(&c, 0, sizeof c);
+    c.dir = ".";
+    mc_args_init(&p, argc, argv);
+    parse_ladder("spp", "1,4,16,64", &c);
+    while ((opt = mc_args_next(&p, options, &v)) != ARG_END) {
+        ok = 1;
+        switch (opt) {
+        case ARG_ERROR: ok = 0; break;
+        case ARG_OPERAND:
+            if (c.scene) {
+                fprintf(stderr, "mcrt: more than one scene given ('%s' and '%s')\n", c.scene, v);
+                ok = 0;
+            }
+            c.scene = v;
+            break;
+        case OPT_REF: c.ref = v; break;
+        case OPT_SPP: c.by_time = 0; ok = parse_ladder("spp", v, &c); break;
+        case OPT_TIMES: c.by_time = 1; ok = parse_ladder("times", v, &c); break;
+        case OPT_COMPARE: ok = parse_compare(v, &c); break;
+        case OPT_OUTPUT: c.dir = v; break;
+        case OPT_THREADS: ok = mc_args_int("threads", v, 0, 1024, &c.threads); break;
+        case OPT_SEED: ok = mc_args_u64("seed", v, &c.seed); break;
+        case OPT_QUIET: c.quiet = 1; break;
+        case OPT_HELP:
+            fputs(usage, stdout);
+            return fflush(stdout) == 0 ? EXIT_OK : EXIT_FAIL;
+        }
+        if (!ok) {
+            for (i = 0; i < c.nvalues; i++)
+                free(c.values[i]);
+            return EXIT_USAGE;
+        }
+    }
+    if (!c.scene) {
+        fprintf(stderr, "mcrt: usage: mcrt converge [options] SCENE (see mcrt converge --help)\n");
+        code = EXIT_USAGE;
+    } else
+        code = run(&c);
+    for (i = 0; i < c.nvalues; i++)
+        free(c.values[i]);
+    return code;
+}

@@ -1,0 +1,502 @@
+/* pov.c: a scene in POV-Ray 3.7 SDL, with every quantity mapped as measured in
+ * shared/research/povray-mapping.md (section 1 and the snippets of section 6), or refused. */
+#include "export/pov.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+/* fade_distance of every light: POV-Ray's attenuation 2/(1 + (d/FD)²) is the inverse square law
+ * times 2·FD² up to a relative FD²/d² (mapping note: 1e-3 gives ≤ 4.7e-4 at d = 1). */
+#define FD 0.001
+/* Radiosity bounces for an unlimited path depth: POV-Ray's cap; the truncated indirect fraction is
+ * ρ^k (mapping note, section 3), 0.7^20 = 8e-4 for the brightest wall of a Cornell box. */
+#define MAX_RECURSION 20
+/* max_trace_level for an unlimited path depth (mcrt ends such paths by unbiased Russian roulette,
+ * POV-Ray needs a cap): after 64 bounces even two facing mirrors of reflectance 0.9 carry
+ * 0.9^64 ≈ 1e-3. */
+#define MAX_TRACE 64
+/* Lens samples per pixel, N×N fixed (mapping note: N ≥ 100 fills the lens disc; fewer and
+ * POV-Ray's variance test stops early). */
+#define BLUR_SAMPLES 100
+
+static const double PI = 3.14159265358979323846;
+
+/* ---- what POV-Ray can reproduce ---- */
+
+/* Diffuse interreflection is part of the image: a path integrator allowing a second bounce. */
+static int has_gi(const struct scene *s)
+{
+    const struct integrator_desc *it = &s->integrator;
+    return it->method == INTEGRATOR_PATH && (it->max_depth < 0 || it->max_depth >= 2);
+}
+
+static int is_emitter(const struct prim *p) { return !v3_is_zero(p->emit); }
+
+static int moves(const struct scene *s)
+{
+    size_t i;
+    if (!v3_is_zero(s->camera.move))
+        return 1;
+    for (i = 0; i < s->prim_count; i++)
+        if (s->prims[i].motion)
+            return 1;
+    return 0;
+}
+
+/* Whether an emitting shape makes every camera sample cast N×N shadow rays. */
+static int has_area_light(const struct scene *s)
+{
+    size_t i;
+    for (i = 0; i < s->prim_count; i++)
+        if (is_emitter(&s->prims[i]))
+            return 1;
+    return 0;
+}
+
+static const char *kind_name(int kind)
+{
+    switch (kind) {
+    case PRIM_TRIANGLE: return "triangle";
+    case PRIM_SPHERE: return "sphere";
+    case PRIM_QUAD: return "quad";
+    default: return "disk";
+    }
+}
+
+static mcrt_status refuse(mc_diag *d, const char *what, const char *why)
+{
+    return mc_fail(d, MCRT_ERR_UNSUPPORTED, "cannot export %s to POV-Ray: %s", what, why);
+}
+
+static mcrt_status check_material(const struct material *m, mc_diag *d)
+{
+    char what[128];
+    snprintf(what, sizeof what, "material '%s'", m->name[0] ? m->name : "(default)");
+    switch (m->kind) {
+    case MATERIAL_METAL:
+        return refuse(d, what, "glossy metal (POV-Ray has no verified microfacet or "
+                               "conductor-Fresnel model)");
+    case MATERIAL_PLASTIC:
+        return refuse(d, what, "glossy plastic (POV-Ray has no verified coated-diffuse model)");
+    case MATERIAL_GLASS:
+        if (m->alpha >= 0.001f) /* below this mcrt renders the smooth surface (mcrt.5) */
+            return refuse(d, what, "rough glass (POV-Ray has no verified microfacet model)");
+        if (m->color.x != 1.0f || m->color.y != 1.0f || m->color.z != 1.0f)
+            return refuse(d, what, "tinted glass (POV-Ray's filter colour is not verified)");
+        return MCRT_OK;
+    default:
+        return MCRT_OK;
+    }
+}
+
+static mcrt_status check_emitter(const struct scene *s, const struct prim *p, mc_diag *d)
+{
+    const struct material *m = &s->materials[p->material];
+    vec3 c = m->color;
+    if (p->kind != PRIM_QUAD && p->kind != PRIM_SPHERE)
+        return refuse(d, p->kind == PRIM_TRIANGLE ? "an emitting triangle" : "an emitting disk",
+                      "only quads (spotlight-lobed area lights) and spheres (circular area "
+                      "lights) are mapped");
+    if (p->flags & PRIM_TWO_SIDED)
+        return refuse(d, "a two_sided emitter", "POV-Ray's area-light lobe is one-sided");
+    if (p->kind == PRIM_SPHERE && (p->flags & PRIM_FLIP))
+        return refuse(d, "an inward-emitting (flipped) sphere", "it is not a sphere light");
+    /* The visible emitter shows emission + diffuse reflection; POV-Ray multiplies emission by the
+     * pigment, so a channel of albedo 0 under a nonzero albedo in another has no exact form. */
+    if (m->kind != MATERIAL_DIFFUSE)
+        return refuse(d, "an emitter with a non-diffuse material",
+                      "the visible emitter is mapped as emission over a Lambertian pigment");
+    if (!v3_is_zero(c) && (c.x == 0.0f || c.y == 0.0f || c.z == 0.0f))
+        return refuse(d, "an emitter whose albedo is zero in some channels only",
+                      "POV-Ray's emission is scaled by the pigment");
+    return MCRT_OK;
+}
+
+mcrt_status mc_pov_check(const struct scene *s, mc_diag *d)
+{
+    size_t i;
+    int specular = 0;
+    mcrt_status st;
+    if (s->env_light >= 0) /* given, or the default sky of a scene without lights */
+        return refuse(d, "the environment light", "a constant sky has no verified POV-Ray mapping");
+    if (s->integrator.max_depth == 0)
+        return refuse(d, "max_depth 0", "POV-Ray always lights the surfaces it sees");
+    for (i = 0; i < s->prim_count; i++) {
+        const struct prim *p = &s->prims[i];
+        const struct material *m = &s->materials[p->material];
+        if ((st = check_material(m, d)) != MCRT_OK)
+            return st;
+        if (p->normals >= 0)
+            return refuse(d, "smooth-shaded triangles", "interpolated normals are not verified");
+        if (p->motion && s->motions[p->motion - 1].omega != 0.0f)
+            return refuse(d, "spin", "only translations are exported as clock motion");
+        if (m->kind == MATERIAL_GLASS && p->kind != PRIM_SPHERE) {
+            char what[64];
+            snprintf(what, sizeof what, "glass on a %s", kind_name(p->kind));
+            return refuse(d, what, "only glass spheres have a verified inside");
+        }
+        if (is_emitter(p) && (st = check_emitter(s, p, d)) != MCRT_OK)
+            return st;
+        specular |= m->kind == MATERIAL_MIRROR || m->kind == MATERIAL_GLASS;
+    }
+    /* With area lights, mcrt finds light -> specular -> diffuse paths (a diffuse bounce that
+     * hits an emitter through a mirror or glass), which POV-Ray lacks (no caustics); and it shows
+     * an emitter seen after the last allowed bounce, which POV-Ray does not trace (its trace level
+     * counts rays, so it matches mcrt's depth for shading, not for emission one ray further).
+     * Point lights are invisible and reach nothing through a specular surface in either. */
+    if (specular && has_area_light(s))
+        return refuse(d, "a mirror or glass with area lights",
+                      "POV-Ray lacks light -> specular -> diffuse paths (caustics) "
+                      "and emitters one ray past the depth limit");
+    return MCRT_OK;
+}
+
+/* ---- writing SDL ---- */
+
+/* Seven significant digits print a scene's decimal values as written (floats hold 7.2); adding
+ * 0 turns −0 into 0. */
+static void put_vec(FILE *f, vec3 v)
+{
+    fprintf(f, "<%.7g, %.7g, %.7g>", v.x + 0.0f, v.y + 0.0f, v.z + 0.0f);
+}
+
+static void put_rgb(FILE *f, vec3 c, double scale)
+{
+    fprintf(f, "rgb <%.7g, %.7g, %.7g>", c.x * scale, c.y * scale, c.z * scale);
+}
+
+/* " translate MC_T*<v>" for a moving primitive: its place at time 0 plus time·velocity. */
+static void put_motion(FILE *f, const struct scene *s, const struct prim *p)
+{
+    if (!p->motion)
+        return;
+    fputs(" translate MC_T*", f);
+    put_vec(f, s->motions[p->motion - 1].move);
+}
+
+/* The antialiasing flags: a box filter over exactly the pixel by a (2^(n−1)+1)² trapezoid grid
+ * (mapping note, "Box pixel filter": against the exact coverage of a hard edge, R5 misses by
+ * 0.0036 max, R4 by 0.013, R3 by 0.044). R5 costs 256 samples per pixel; under area lights each
+ * casts N² = 256 shadow rays, so those scenes take R4 (a quarter of the cost, about 30 CPU-s at
+ * 128×96). Motion blur averages K clock frames at (i + 1/2)/K, each with R3: the K frames
+ * multiply the samples, and the clock sampling (error ≈ 1/K of the moving contrast) dominates. */
+static void put_flags(FILE *f, const struct scene *s)
+{
+    int level = moves(s) ? 3 : has_area_light(s) ? 4 : 5;
+    fprintf(f, "// povray +W%d +H%d +FE +A0.0 +AM2 +R%d -J", s->film.width, s->film.height, level);
+    if (moves(s))
+        fprintf(f, " +KFI1 +KFF%d +KI%.7g +KF%.7g", MC_POV_FRAMES, 0.5 / MC_POV_FRAMES,
+                1.0 - 0.5 / MC_POV_FRAMES);
+    fputc('\n', f);
+}
+
+static void put_globals(FILE *f, const struct scene *s)
+{
+    const struct integrator_desc *it = &s->integrator;
+    int depth = it->method == INTEGRATOR_DIRECT ? 1 : it->max_depth < 0 ? MAX_TRACE : it->max_depth;
+    /* A POV-Ray trace level is one ray: level 1 is the camera ray, each specular bounce adds one,
+     * so mcrt's bounce limit is the trace limit. adc_bailout 0 keeps faint specular chains. */
+    fprintf(f, "global_settings {\n  assumed_gamma 1.0\n  max_trace_level %d\n  adc_bailout 0\n",
+            depth < MAX_TRACE ? depth : MAX_TRACE);
+    if (has_gi(s)) {
+        int k = it->max_depth < 0 || it->max_depth - 1 > MAX_RECURSION ? MAX_RECURSION
+                                                                         : it->max_depth - 1;
+        /* The measured settings (mapping note, section 3): +0.16% mean in a closed sphere. */
+        fprintf(f, "  radiosity {\n    count 200 nearest_count 10 error_bound 0.5 "
+                   "recursion_limit %d\n    pretrace_start 0.08 pretrace_end 0.01 "
+                   "low_error_factor 0.5 gray_threshold 0\n    brightness 1 minimum_reuse 0.015 "
+                   "adc_bailout 0.0001 always_sample off normal off media off\n  }\n",
+                k);
+    }
+    fputs("}\n", f);
+}
+
+/* The camera frame of mcrt.5 (CONVENTIONS) given as explicit direction, right and up vectors:
+ * POV-Ray casts direction + (x/W − 1/2)·right + (1/2 − y/H)·up, which is mcrt's film map when
+ * direction = f/(2 tan(fov/2)), right = r·W/H and up = u. With explicit vectors no handedness
+ * enters (it would only through look_at, rotate and sky), so coordinates are copied unchanged. */
+static void put_camera(FILE *f, const struct scene *s)
+{
+    const struct camera_desc *c = &s->camera;
+    vec3 view = v3_sub(c->look, c->eye);
+    vec3 fw = v3_normalize(view);
+    vec3 r = v3_normalize(v3_cross(fw, c->up));
+    vec3 u = v3_cross(r, fw);
+    double tan_half = tan(0.5 * c->fov * PI / 180.0);
+    int m = !v3_is_zero(c->move);
+    fputs("camera {\n  perspective\n  location ", f);
+    put_vec(f, c->eye);
+    if (m) {
+        fputs(" + MC_T*", f);
+        put_vec(f, c->move);
+    }
+    fputs("\n  direction ", f);
+    put_vec(f, v3_scale(fw, (float)(0.5 / tan_half)));
+    fputs("\n  right ", f);
+    put_vec(f, v3_scale(r, (float)s->film.width / (float)s->film.height));
+    fputs("\n  up ", f);
+    put_vec(f, u);
+    fputc('\n', f);
+    if (c->lens_radius > 0.0f) {
+        float focus = c->focus_distance > 0.0f ? c->focus_distance : v3_length(view);
+        /* POV-Ray's lens radius is aperture/4 (mapping note, thin-lens row); the focus plane is
+         * at depth `focus` along the view axis, as in mcrt. */
+        fprintf(f, "  aperture %.7g\n  focal_point ", 4.0 * c->lens_radius);
+        put_vec(f, v3_madd(c->eye, fw, focus));
+        if (m) {
+            fputs(" + MC_T*", f);
+            put_vec(f, c->move);
+        }
+        fprintf(f, "\n  blur_samples %d, %d\n  confidence 0.9999\n  variance 0\n", BLUR_SAMPLES,
+                BLUR_SAMPLES);
+    }
+    fputs("}\n", f);
+}
+
+/* The declaration of material k (checked: diffuse, mirror or smooth clear glass): texture Tk, and
+ * for glass also interior Ik. */
+static void put_material(FILE *f, int k, const struct material *m)
+{
+    fprintf(f, "// material '%s'\n#declare T%d = texture { pigment { ", m->name, k);
+    switch (m->kind) {
+    case MATERIAL_MIRROR: /* constant reflectance at every angle (mapping note, mirror rows) */
+        fputs("rgb 0 } finish { ambient 0 diffuse 0 specular 0 phong 0 reflection { ", f);
+        put_rgb(f, m->color, 1.0);
+        fputs(" } } }\n", f);
+        break;
+    case MATERIAL_GLASS: /* unpolarised Fresnel, TIR included (mapping note, dielectric rows) */
+        fprintf(f, "rgbf 1 } finish { ambient 0 diffuse 0 specular 0 phong 0 reflection { 0, 1 "
+                   "fresnel on } conserve_energy } }\n#declare I%d = interior { ior %.7g }\n",
+                k, m->ior);
+        break;
+    default:
+        put_rgb(f, m->color, 1.0);
+        fputs(" } finish { ambient 0 diffuse 1 brilliance 1 specular 0 phong 0 } }\n", f);
+    }
+}
+
+/* The visible part of an emitter: emission Le over its albedo ρ (emission is scaled by the
+ * pigment, so it is Le/ρ over pigment ρ, or Le over white with no diffuse reflection when ρ = 0).
+ * no_radiosity: the light_source already delivers its direct light. */
+static void put_emitter_finish(FILE *f, const struct scene *s, const struct prim *p)
+{
+    vec3 a = s->materials[p->material].color, e = p->emit;
+    if (v3_is_zero(a)) {
+        fputs("pigment { rgb 1 } finish { ambient 0 diffuse 0 specular 0 phong 0 emission ", f);
+        put_rgb(f, e, 1.0);
+    } else {
+        fputs("pigment { ", f);
+        put_rgb(f, a, 1.0);
+        fputs(" } finish { ambient 0 diffuse 1 brilliance 1 specular 0 phong 0 emission ", f);
+        put_rgb(f, v3(e.x / a.x, e.y / a.y, e.z / a.z), 1.0);
+    }
+    fputs(" } no_radiosity", f);
+}
+
+static vec3 quad_normal(const struct prim *p)
+{
+    vec3 n = v3_normalize(v3_cross(p->p[1], p->p[2]));
+    return (p->flags & PRIM_FLIP) ? v3_neg(n) : n;
+}
+
+static void put_polygon(FILE *f, vec3 o, vec3 e1, vec3 e2)
+{
+    fputs("polygon { 5, ", f);
+    put_vec(f, o);
+    fputs(", ", f);
+    put_vec(f, v3_add(o, e1));
+    fputs(", ", f);
+    put_vec(f, v3_add(v3_add(o, e1), e2));
+    fputs(", ", f);
+    put_vec(f, v3_add(o, e2));
+    fputs(", ", f);
+    put_vec(f, o);
+}
+
+/* A one-sided Lambertian quad of radiance Le: N×N grid sub-lights spanning the quad (axes scaled
+ * by (N−1)/N since the grid includes its end points), each given the cos lobe of a Lambertian
+ * emitter by a spotlight with radius = falloff = 90° and tightness 1; total intensity Le·A along
+ * the normal, with the 1/π of the receiving BRDF folded in: Le·A/(2π·FD²) (mapping note 6.5). */
+static void put_quad_light(FILE *f, const struct scene *s, const struct prim *p)
+{
+    vec3 e1 = p->p[1], e2 = p->p[2];
+    vec3 centre = v3_add(p->p[0], v3_scale(v3_add(e1, e2), 0.5f));
+    double area = v3_length(v3_cross(e1, e2));
+    float g = (float)(MC_POV_GRID - 1) / MC_POV_GRID;
+    fputs("light_source { ", f);
+    put_vec(f, centre);
+    fputs(" color ", f);
+    put_rgb(f, p->emit, area / (2.0 * PI * FD * FD));
+    fprintf(f, "\n  fade_distance %g fade_power 2\n  spotlight point_at ", FD);
+    put_vec(f, v3_add(centre, quad_normal(p)));
+    fputs(" radius 90 falloff 90 tightness 1\n  area_light ", f);
+    put_vec(f, v3_scale(e1, g));
+    fputs(", ", f);
+    put_vec(f, v3_scale(e2, g));
+    fprintf(f, ", %d, %d jitter area_illumination on\n  looks_like { ", MC_POV_GRID, MC_POV_GRID);
+    /* looks_like objects are placed relative to the light's location. */
+    put_polygon(f, v3_scale(v3_add(e1, e2), -0.5f), e1, e2);
+    fputc(' ', f);
+    put_emitter_finish(f, s, p);
+    fputs(" } }", f);
+    put_motion(f, s, p);
+    fputs(" }\n", f);
+}
+
+/* A sphere of radius R and radiance L is, seen from outside, exactly a point of intensity πR²L;
+ * POV-Ray renders it as a disc of N×N isotropic points facing each shading point (circular
+ * orient), biased by about −0.75 (R/d)² on axis (mapping note 6.4). Colour πR²L/(2π·FD²). */
+static void put_sphere_light(FILE *f, const struct scene *s, const struct prim *p)
+{
+    double r = p->p[1].x, g = 2.0 * r * (MC_POV_GRID - 1) / MC_POV_GRID;
+    fputs("light_source { ", f);
+    put_vec(f, p->p[0]);
+    fputs(" color ", f);
+    put_rgb(f, p->emit, r * r / (2.0 * FD * FD));
+    fprintf(f, "\n  fade_distance %g fade_power 2\n  area_light <%.7g, 0, 0>, <0, %.7g, 0>, %d, "
+               "%d circular orient jitter area_illumination on\n  looks_like { sphere { 0, %.7g ",
+            FD, g, g, MC_POV_GRID, MC_POV_GRID, r);
+    put_emitter_finish(f, s, p);
+    fputs(" } }", f);
+    put_motion(f, s, p);
+    fputs(" }\n", f);
+}
+
+/* An isotropic point of intensity I: colour I/(2π·FD²) with fade_power 2 (mapping note 6.1). */
+static void put_point_light(FILE *f, const struct light *l)
+{
+    fputs("light_source { ", f);
+    put_vec(f, l->position);
+    fputs(" color ", f);
+    put_rgb(f, l->intensity, 1.0 / (2.0 * PI * FD * FD));
+    fprintf(f, " fade_distance %g fade_power 2 }\n", FD);
+}
+
+static void put_prim(FILE *f, const struct scene *s, const struct prim *p)
+{
+    switch (p->kind) {
+    case PRIM_SPHERE:
+        fputs("sphere { ", f);
+        put_vec(f, p->p[0]);
+        fprintf(f, ", %.7g ", p->p[1].x);
+        break;
+    case PRIM_QUAD:
+        put_polygon(f, p->p[0], p->p[1], p->p[2]);
+        fputc(' ', f);
+        break;
+    case PRIM_DISK:
+        fputs("disc { ", f);
+        put_vec(f, p->p[0]);
+        fputs(", ", f);
+        put_vec(f, p->p[1]);
+        fprintf(f, ", %.7g ", p->p[2].x);
+        break;
+    default:
+        fputs("triangle { ", f);
+        put_vec(f, p->p[0]);
+        fputs(", ", f);
+        put_vec(f, p->p[1]);
+        fputs(", ", f);
+        put_vec(f, p->p[2]);
+        fputc(' ', f);
+    }
+    fprintf(f, "texture { T%d }", p->material);
+    if (s->materials[p->material].kind == MATERIAL_GLASS)
+        fprintf(f, " interior { I%d }", p->material);
+    put_motion(f, s, p);
+    fputs(" }\n", f);
+}
+
+/* The whole file; 0 when out of memory. */
+static int put_scene(FILE *f, const struct scene *s)
+{
+    size_t i;
+    unsigned char *used = calloc(s->material_count, 1); /* materials declared so far */
+    if (!used)
+        return 0;
+    fputs("// POV-Ray 3.7 reference of an mcrt scene, written by `mcrt pov` (see mcrt(1)).\n", f);
+    put_flags(f, s);
+    if (s->film.filter != FILTER_BOX)
+        fputs("// The scene's pixel filter is not box: this reference is box-filtered.\n", f);
+    fputs("#version 3.7;\n", f);
+    put_globals(f, s);
+    if (moves(s))
+        fprintf(f, "// Scene time: the shutter [%.7g, %.7g] spanned by the clock in [0, 1].\n"
+                   "#declare MC_T = %.7g + clock*%.7g;\n",
+                s->camera.shutter[0], s->camera.shutter[1], s->camera.shutter[0],
+                s->camera.shutter[1] - s->camera.shutter[0]);
+    put_camera(f, s);
+    for (i = 0; i < s->prim_count; i++) {
+        int k = s->prims[i].material;
+        if (is_emitter(&s->prims[i]) || used[k])
+            continue;
+        used[k] = 1;
+        put_material(f, k, &s->materials[k]);
+    }
+    free(used);
+    for (i = 0; i < s->light_count; i++)
+        if (s->lights[i].kind == LIGHT_POINT)
+            put_point_light(f, &s->lights[i]);
+    for (i = 0; i < s->prim_count; i++) {
+        const struct prim *p = &s->prims[i];
+        if (!is_emitter(p))
+            put_prim(f, s, p);
+        else if (p->kind == PRIM_QUAD)
+            put_quad_light(f, s, p);
+        else
+            put_sphere_light(f, s, p);
+    }
+    return 1;
+}
+
+/* Write len bytes of text to path; 1 on success. */
+static int write_all(const char *path, const char *text, size_t len)
+{
+    FILE *f = fopen(path, "w");
+    int ok = f != NULL;
+    if (ok) {
+        ok = fwrite(text, 1, len, f) == len;
+        ok = fclose(f) == 0 && ok;
+    }
+    return ok;
+}
+
+mcrt_status mc_pov_save(const struct scene *s, const char *path, mc_diag *d)
+{
+    char *text = NULL, *tmp;
+    size_t len = 0, tlen = strlen(path) + 32;
+    struct stat sb;
+    FILE *f;
+    int ok;
+    mcrt_status st = mc_pov_check(s, d);
+    if (st != MCRT_OK)
+        return st;
+    /* Into memory first: a file is created only once the whole text exists. */
+    if (!(f = open_memstream(&text, &len)))
+        return mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
+    ok = put_scene(f, s) && !ferror(f);
+    if (fclose(f) != 0 || !ok) {
+        free(text);
+        return mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
+    }
+    if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode)) {
+        /* Not a regular file (/dev/stdout, a pipe): written in place, since renaming over it
+         * would replace the device or pipe. */
+        ok = write_all(path, text, len);
+    } else if (!(tmp = malloc(tlen))) {
+        free(text);
+        return mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
+    } else {
+        snprintf(tmp, tlen, "%s.tmp-%ld", path, (long)getpid());
+        ok = write_all(tmp, text, len) && rename(tmp, path) == 0;
+        if (!ok)
+            remove(tmp);
+        free(tmp);
+    }
+    free(text);
+    return ok ? MCRT_OK : mc_fail(d, MCRT_ERR_IO, "cannot write '%s'", path);
+}

@@ -1,0 +1,69 @@
+/* passes.c: progressive passes over mc_render (see passes.h). A pass renders into a scratch film
+ * and is merged (Chan, Golub and LeVeque 1979) only when complete, so an interrupted render holds
+ * whole passes: every pixel has the same number of samples. */
+#include "render/passes.h"
+
+#include <time.h>
+
+#include "core/rng.h"
+
+static double now_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+uint64_t mc_pass_seed(uint64_t seed, int k)
+{
+    /* The constant separates pass seeds from the seeds a user picks ("passes" in ASCII). */
+    return k == 0 ? seed : mc_hash3(seed, (uint64_t)k, 0x706173736573ULL);
+}
+
+static void add_counts(struct pass_result *out, const struct render_result *res)
+{
+    out->rays += res->rays;
+    out->nan_count += res->nan_count;
+}
+
+mcrt_status mc_render_passes(const struct scene *s, const struct render_settings *rs,
+                             const struct pass_settings *ps, struct film *f,
+                             struct pass_result *out, mc_diag *d)
+{
+    struct render_settings pass = *rs;
+    struct render_result res;
+    struct film scratch;
+    double t0 = now_seconds(), elapsed;
+    mcrt_status st;
+    out->passes = 0;
+    out->rays = out->nan_count = 0;
+    if (!(ps->time_budget > 0.0) && !(ps->target_error > 0.0)) {
+        st = mc_render(s, rs, f, &res, d);
+        add_counts(out, &res);
+        out->passes = st == MCRT_OK;
+        out->seconds = res.seconds;
+        return st;
+    }
+    if (mc_film_init(&scratch, f->width, f->height) != 0)
+        return mc_fail(d, MCRT_ERR_NOMEM, "out of memory for a %dx%d film", f->width, f->height);
+    for (;;) {
+        pass.seed = mc_pass_seed(rs->seed, out->passes);
+        mc_film_clear(&scratch);
+        st = mc_render(s, &pass, &scratch, &res, d);
+        add_counts(out, &res);
+        if (st != MCRT_OK)
+            break; /* cancelled: the partial pass is dropped */
+        mc_film_merge(f, &scratch);
+        out->passes++;
+        elapsed = now_seconds() - t0;
+        if (out->passes >= ps->max_passes)
+            break;
+        if (ps->target_error > 0.0 && mc_film_est_relmse(f) <= ps->target_error)
+            break;
+        if (ps->time_budget > 0.0 && elapsed + res.seconds > ps->time_budget)
+            break;
+    }
+    mc_film_free(&scratch);
+    out->seconds = now_seconds() - t0;
+    return st;
+}

@@ -1,0 +1,85 @@
+/* test_aov.c: the extra image layers of a render (mcrt_options.aovs) read back from its EXR: the
+ * albedo, normal and depth of a plane facing the camera are known exactly, and the variance layer
+ * is the one src/render/film.c computes. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "io/image.h"
+#include "mcrt.h"
+#include "t.h"
+
+/* A quad at z = -5 filling the view of a camera at the origin looking down -z, lit by the
+ * environment; its colour is (0.5, 0.25, 0.125). */
+static const char scene_text[] =
+    "film { width 8 height 6 spp 4 }\n"
+    "camera { eye 0 0 0  look 0 0 -1  fov 30 }\n"
+    "material m { diffuse 0.5 0.25 0.125 }\n"
+    "quad { corner -50 -50 -5  edge1 100 0 0  edge2 0 100 0  material m }\n"
+    "environment { radiance 1 }\n";
+
+int main(void)
+{
+    char dir[] = "/tmp/mcrt-aov-XXXXXX", path[64];
+    mcrt_scene *s = mcrt_scene_new();
+    mcrt_render *r;
+    mcrt_options o;
+    mcrt_stats st;
+    struct image im = {0, 0, NULL}, var = {0, 0, NULL};
+    mc_diag d;
+    int ok, i;
+    double est = 0.0;
+
+    if (!mcrt_format_supported("exr")) {
+        T_NOTE("built without OpenEXR: skipped");
+        return t_done();
+    }
+    if (!mkdtemp(dir)) {
+        T_CHECK(0, "mkdtemp");
+        return t_done();
+    }
+    snprintf(path, sizeof path, "%s/a.exr", dir);
+    T_CHECK(mcrt_scene_load_string(s, scene_text, strlen(scene_text), NULL) == MCRT_OK, "%s",
+            mcrt_scene_error(s));
+    mcrt_options_init(&o);
+    o.aovs = "depth,albedo,normal,variance";
+    r = mcrt_render_new(s, &o);
+    T_CHECK(mcrt_render_run(r) == MCRT_OK && mcrt_render_save(r, path) == MCRT_OK, "%s",
+            mcrt_render_error(r));
+
+    ok = mc_image_read_layer(path, "albedo", &im, &d) == MCRT_OK;
+    for (i = 0; ok && i < 8 * 6; i++)
+        ok = im.rgb[3 * i] == 0.5f && im.rgb[3 * i + 1] == 0.25f && im.rgb[3 * i + 2] == 0.125f;
+    T_CHECK(ok, "albedo is the material colour everywhere");
+    mc_image_free(&im);
+    /* The normal (0, 0, 1) faces the camera; averages of equal unit vectors stay exact. */
+    ok = mc_image_read_layer(path, "normal", &im, &d) == MCRT_OK;
+    for (i = 0; ok && i < 8 * 6; i++)
+        ok = im.rgb[3 * i] == 0.0f && im.rgb[3 * i + 1] == 0.0f && im.rgb[3 * i + 2] == 1.0f;
+    T_CHECK(ok, "normal (0, 0, 1) everywhere");
+    mc_image_free(&im);
+    /* Depth is the distance 5/cos θ to the plane: between 5 and 5/cos θ at the corners, where
+     * tan θ = tan 15° · sqrt(1 + (8/6)²) = 0.447, so 5·sqrt(1 + 0.2) = 5.477; all channels equal. */
+    ok = mc_image_read_layer(path, "depth", &im, &d) == MCRT_OK;
+    for (i = 0; ok && i < 8 * 6; i++)
+        ok = im.rgb[3 * i] >= 4.9999f && im.rgb[3 * i] < 5.478f && im.rgb[3 * i] == im.rgb[3 * i + 2];
+    T_CHECK(ok, "depth between 5 and 5.477 (pixel %d)", i - 1);
+    mc_image_free(&im);
+    /* The variance layer and the image give back the render's est_relmse (float rounding of the
+     * stored layers: relative 1e-6). */
+    ok = mc_image_read_layer(path, "variance", &var, &d) == MCRT_OK &&
+         mc_image_read(path, &im, &d) == MCRT_OK;
+    for (i = 0; ok && i < 8 * 6 * 3; i++)
+        est += var.rgb[i] / ((double)im.rgb[i] * im.rgb[i] + 0.01);
+    mcrt_render_stats(r, &st);
+    T_NEAR(est / (8 * 6 * 3) / st.est_relmse, 1.0, 1e-5, "est_relmse from the layers");
+    T_CHECK(st.est_relmse > 0.0, "the estimate is positive: %g", st.est_relmse);
+    mc_image_free(&im);
+    mc_image_free(&var);
+    mcrt_render_free(r);
+    mcrt_scene_free(s);
+    unlink(path);
+    rmdir(dir);
+    return t_done();
+}
