@@ -292,6 +292,7 @@ static mcrt_status settings(const mcrt_render *r, struct render_settings *rs, mc
     const struct scene *s = &r->scene->s;
     const mcrt_options *o = &r->opt;
     enum integrator_kind method = s->integrator.method;
+    enum strategy strategy = s->integrator.strategy;
     if (o->size != sizeof *o)
         return mc_fail(d, MCRT_ERR_INVALID, "mcrt_options not initialised by mcrt_options_init");
     if (o->spp < 0 || o->spp > MAX_SPP)
@@ -299,19 +300,31 @@ static mcrt_status settings(const mcrt_render *r, struct render_settings *rs, mc
     if (o->threads < 0 || o->threads > MAX_THREADS)
         return mc_fail(d, MCRT_ERR_INVALID, "threads must be between 1 and %d, got %d",
                        MAX_THREADS, o->threads);
+    /* "path" and "direct" choose the method; "mis", "bsdf" and "light" the path tracer with that
+     * strategy (the enum's order). */
     if (o->integrator) {
+        static const char *const strategies[] = {"mis", "bsdf", "light"};
+        int i;
         if (strcmp(o->integrator, "path") == 0)
             method = INTEGRATOR_PATH;
         else if (strcmp(o->integrator, "direct") == 0)
             method = INTEGRATOR_DIRECT;
-        else
-            return mc_fail(d, MCRT_ERR_INVALID, "unknown integrator '%s' (use path or direct)",
-                           o->integrator);
+        else {
+            for (i = 0; i < 3 && strcmp(o->integrator, strategies[i]) != 0; i++)
+                ;
+            if (i == 3)
+                return mc_fail(d, MCRT_ERR_INVALID,
+                               "unknown integrator '%s' (use path, direct, mis, bsdf or light)",
+                               o->integrator);
+            method = INTEGRATOR_PATH;
+            strategy = (enum strategy)i;
+        }
     }
     rs->spp = o->spp ? o->spp : s->film.spp;
     rs->threads = o->threads ? o->threads : default_threads();
     rs->seed = o->seed;
     rs->integrator = mc_integrator_config(&s->integrator, method);
+    rs->integrator.strategy = strategy;
     rs->features = o->all_features ? FEATURE_ALL : mc_scene_features(s);
     rs->progress = o->progress;
     rs->user = o->user;

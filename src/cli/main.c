@@ -37,7 +37,9 @@ static const char usage[] =
     "  --threads N         worker threads; 0 means one per core (default: 0)\n"
     "  --seed N            random seed, 0 to 2^64-1 (default: 0); the image depends only on\n"
     "                      the scene, the options and the seed, not on the number of threads\n"
-    "  --integrator NAME   path or direct (default: the scene's)\n"
+    "  --integrator NAME   path or direct (default: the scene's); or mis, bsdf, light: the path\n"
+    "                      tracer finding light by both strategies weighted by MIS, by BSDF\n"
+    "                      sampling only (point lights unseen), or by light sampling only\n"
     "  --all-features      render with the general code path instead of the one built for the\n"
     "                      features the scene uses (the same image in expectation; slower)\n"
     "  --stats FILE        write statistics as JSON (size, spp, threads, seconds, rays, NaNs,\n"
@@ -335,8 +337,10 @@ static int parse_render_args(int argc, char **argv, struct render_args *a)
                 return EXIT_USAGE;
             break;
         case OPT_INTEGRATOR:
-            if (strcmp(v, "path") != 0 && strcmp(v, "direct") != 0) {
-                fprintf(stderr, "mcrt: --integrator: expected 'path' or 'direct', got '%s'\n", v);
+            if (strcmp(v, "path") != 0 && strcmp(v, "direct") != 0 && strcmp(v, "mis") != 0
+                && strcmp(v, "bsdf") != 0 && strcmp(v, "light") != 0) {
+                fprintf(stderr, "mcrt: --integrator: expected path, direct, mis, bsdf or light, got "
+                                "'%s'\n", v);
                 return EXIT_USAGE;
             }
             a->integrator = v;

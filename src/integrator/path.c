@@ -52,9 +52,10 @@ static inline void surface(const struct scene *s, const struct ray *r, const str
 
 /* One shadow ray of next-event estimation: a light chosen by power, a point on it, weighted
  * against BSDF sampling when MIS is on. Returns the contribution before the path throughput. */
-static inline vec3 light_sample(const struct scene *s, const struct surface *sf, float time,
-                                const frame *fr, const struct bsdf *b, vec3 wo,
-                                struct sampler *smp, uint64_t *rays, int n, unsigned F)
+static inline vec3 light_sample(const struct scene *s, const struct integrator_desc *cfg,
+                                const struct surface *sf, float time, const frame *fr,
+                                const struct bsdf *b, vec3 wo, struct sampler *smp,
+                                uint64_t *rays, int n, unsigned F)
 {
     struct light_sample ls;
     struct ray shadow;
@@ -89,7 +90,7 @@ static inline vec3 light_sample(const struct scene *s, const struct surface *sf,
     if (occluded(s, &shadow, F))
         return v3s(0.0f);
     light_pdf = pmf * ls.pdf;
-    weight = !mc_features_need_mis(F) || ls.delta
+    weight = !mc_features_need_mis(F) || ls.delta || cfg->strategy == STRATEGY_LIGHT
                  ? 1.0f
                  : power_heuristic((float)n * light_pdf, mc_bsdf_pdf(b, wo, wi));
     return v3_scale(v3_mul(f, ls.L), weight / ((float)n * light_pdf));
@@ -104,17 +105,21 @@ static inline vec3 sample_direct(const struct scene *s, const struct integrator_
     vec3 L = v3s(0.0f);
     int i, n = F & FEATURE_LIGHT_SAMPLES ? cfg->light_samples : 1;
     for (i = 0; i < n; i++)
-        L = v3_add(L, light_sample(s, sf, time, fr, b, wo, smp, rays, n, F));
+        L = v3_add(L, light_sample(s, cfg, sf, time, fr, b, wo, smp, rays, n, F));
     return L;
 }
 
-/* MIS weight of light found by BSDF sampling (pdf bsdf_pdf at the previous vertex prev_p), against
- * the n light samples that could also have produced it. */
+/* Weight of light found by BSDF sampling (pdf bsdf_pdf at the previous vertex prev_p, a non-delta
+ * bounce): with MIS, the power heuristic against the n light samples that could also have
+ * produced it; with one strategy alone, all or nothing. */
 static float emitted_weight(const struct scene *s, const struct integrator_desc *cfg, int light,
                             vec3 prev_p, float bsdf_pdf, const struct ray *r, float t,
                             const struct surface *sf)
 {
-    float light_pdf = mc_alias_pmf(&s->light_select, (size_t)light)
+    float light_pdf;
+    if (cfg->strategy != STRATEGY_MIS)
+        return cfg->strategy == STRATEGY_BSDF ? 1.0f : 0.0f;
+    light_pdf = mc_alias_pmf(&s->light_select, (size_t)light)
                       * mc_light_pdf(s, &s->lights[light], prev_p, r->time, r->d, t, sf);
     return power_heuristic(bsdf_pdf, (float)cfg->light_samples * light_pdf);
 }
@@ -161,7 +166,7 @@ static inline vec3 radiance(const struct scene *s, const struct integrator_desc 
         mc_bsdf_init(&b, &s->materials[pr->material]);
         fr = frame_from_normal(sf.ns);
         wo = frame_to_local(&fr, v3_neg(r.d));
-        if (!mc_bsdf_is_delta(&b))
+        if (!mc_bsdf_is_delta(&b) && cfg->strategy != STRATEGY_BSDF)
             L = v3_add(L, v3_mul(beta, sample_direct(s, cfg, &sf, r.time, &fr, &b, wo, smp, rays, F)));
 
         {

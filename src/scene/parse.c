@@ -525,6 +525,7 @@ static const struct token *latest(const struct block *b, int n, const int *keys)
 static const char *const sampler_names[] = {"random", "stratified", "sobol", NULL};
 static const char *const filter_names[] = {"box", "tent", "gaussian", NULL};
 static const char *const method_names[] = {"path", "direct", NULL};
+static const char *const strategy_names[] = {"mis", "bsdf", "light", NULL};
 
 enum { FILM_WIDTH, FILM_HEIGHT, FILM_SPP, FILM_SAMPLER, FILM_FILTER };
 static const struct key film_keys[] = {
@@ -607,12 +608,13 @@ static void finish_camera(struct parser *p, struct block *b)
              "'look'");
 }
 
-enum { INT_METHOD, INT_MAX_DEPTH, INT_RR_DEPTH, INT_LIGHT_SAMPLES };
+enum { INT_METHOD, INT_MAX_DEPTH, INT_RR_DEPTH, INT_LIGHT_SAMPLES, INT_STRATEGY };
 static const struct key integrator_keys[] = {
     {"method", V_CHOICE, 0, 0, NULL, method_names, NULL},
     {"max_depth", V_INT, 0, 65536, NULL, NULL, NULL},
     {"rr_depth", V_INT, 0, 65536, NULL, NULL, NULL},
     {"light_samples", V_INT, 1, 1024, NULL, NULL, NULL},
+    {"strategy", V_CHOICE, 0, 0, NULL, strategy_names, NULL},
 };
 
 static void finish_integrator(struct parser *p, struct block *b)
@@ -626,6 +628,8 @@ static void finish_integrator(struct parser *p, struct block *b)
         it->rr_depth = (int)b->v[INT_RR_DEPTH].at[0].num;
     if (b->v[INT_LIGHT_SAMPLES].set)
         it->light_samples = (int)b->v[INT_LIGHT_SAMPLES].at[0].num;
+    if (b->v[INT_STRATEGY].set)
+        it->strategy = (enum strategy)b->v[INT_STRATEGY].choice;
 }
 
 /* The first five keys are the material's kind: exactly one is given. */

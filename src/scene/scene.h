@@ -15,6 +15,8 @@
 #include "sample/sampler.h"  /* enum sampler_kind */
 
 enum integrator_kind { INTEGRATOR_PATH, INTEGRATOR_DIRECT };
+/* How the path tracer finds light: both ways weighted by MIS, or one way only (for measuring). */
+enum strategy { STRATEGY_MIS, STRATEGY_BSDF, STRATEGY_LIGHT };
 enum material_kind { MATERIAL_DIFFUSE, MATERIAL_MIRROR, MATERIAL_GLASS, MATERIAL_METAL, MATERIAL_PLASTIC };
 
 struct film_desc {
@@ -37,6 +39,7 @@ struct integrator_desc {
     int max_depth;                   /* bounces; -1 = unlimited (Russian roulette ends paths) */
     int rr_depth;                    /* Russian roulette starts after this many bounces: 5 */
     int light_samples;               /* shadow rays per non-delta hit: 1 */
+    enum strategy strategy;          /* mis */
 };
 
 struct material {
