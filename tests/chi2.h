@@ -54,9 +54,11 @@ struct chi2_result {
 
 #define CHI2_PI 3.14159265358979323846
 
-/* A test on the unit square with n × n cells; the caller sets samples, seed and tests as needed. */
-static inline struct chi2_spec chi2_unit_spec(const char *name, chi2_sample_fn sample,
-                                              chi2_density_fn density, void *ctx, int n)
+/* A test of sample against density on [x0, x1] × [y0, y1] with nx × ny cells; the other fields
+ * are zero (their defaults), for the caller to set as needed. */
+static inline struct chi2_spec chi2_rect_spec(const char *name, chi2_sample_fn sample,
+                                              chi2_density_fn density, void *ctx, double x0,
+                                              double x1, double y0, double y1, int nx, int ny)
 {
     struct chi2_spec s;
     memset(&s, 0, sizeof s);
@@ -64,9 +66,20 @@ static inline struct chi2_spec chi2_unit_spec(const char *name, chi2_sample_fn s
     s.sample = sample;
     s.density = density;
     s.ctx = ctx;
-    s.x1 = s.y1 = 1.0;
-    s.nx = s.ny = n;
+    s.x0 = x0;
+    s.x1 = x1;
+    s.y0 = y0;
+    s.y1 = y1;
+    s.nx = nx;
+    s.ny = ny;
     return s;
+}
+
+/* The same on the unit square with n × n cells. */
+static inline struct chi2_spec chi2_unit_spec(const char *name, chi2_sample_fn sample,
+                                              chi2_density_fn density, void *ctx, int n)
+{
+    return chi2_rect_spec(name, sample, density, ctx, 0.0, 1.0, 0.0, 1.0, n, n);
 }
 
 /* The density of a uniform distribution on the unit square, for samplers tested on [0,1)². */
@@ -354,6 +367,21 @@ struct chi2_dir_spec {
     int tests;
     int quiet;
 };
+
+/* A direction test of sample against pdf over θ ≤ theta_max (0: the sphere) on pbrt's grid; the
+ * other fields are zero (their defaults), for the caller to set as needed. */
+static inline struct chi2_dir_spec chi2_dir_spec_of(const char *name, chi2_dir_sample_fn sample,
+                                                    chi2_dir_pdf_fn pdf, void *ctx, double theta_max)
+{
+    struct chi2_dir_spec s;
+    memset(&s, 0, sizeof s);
+    s.name = name;
+    s.sample = sample;
+    s.pdf = pdf;
+    s.ctx = ctx;
+    s.theta_max = theta_max;
+    return s;
+}
 
 static inline int chi2_dir_sample(void *ctx, pcg32 *rng, double *x, double *y)
 {

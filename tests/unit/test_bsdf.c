@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "bsdf/bsdf.h"
+#include "bsdf_util.h"
 #include "chi2.h"
 #include "sample/warp.h"
 #include "scene/scene.h"
@@ -14,12 +15,6 @@
 #define CHI2_TESTS 5
 
 static const double PI = 3.14159265358979323846;
-
-static vec2 rand2(pcg32 *r)
-{
-    float a = pcg32_float(r);
-    return v2(a, pcg32_float(r));
-}
 
 static struct bsdf make_bsdf(enum material_kind kind, vec3 color, float ior)
 {
@@ -129,42 +124,20 @@ static void test_fresnel(void)
 
 /* ---- diffuse ---- */
 
-struct diffuse_case { struct bsdf b; vec3 wo; };
-
-static int sample_diffuse(void *ctx, pcg32 *rng, vec3 *w)
-{
-    const struct diffuse_case *c = (const struct diffuse_case *)ctx;
-    struct bsdf_sample s;
-    float uc = pcg32_float(rng);
-    if (!mc_bsdf_sample(&c->b, c->wo, uc, rand2(rng), &s))
-        return 0;
-    *w = s.wi;
-    return 1;
-}
-static double pdf_diffuse(void *ctx, vec3 wi)
-{
-    const struct diffuse_case *c = (const struct diffuse_case *)ctx;
-    return mc_bsdf_pdf(&c->b, c->wo, wi);
-}
-
 static void test_diffuse_chi2(void)
 {
     /* 89° is nearly grazing; 135° is the back face, where the lobe must mirror to z < 0. */
     static const double thetas[] = {0.0, 30.0, 60.0, 89.0, 135.0};
     size_t k;
     for (k = 0; k < sizeof thetas / sizeof thetas[0]; k++) {
-        struct diffuse_case c;
+        struct bsdf_case c;
         struct chi2_dir_spec s;
         struct chi2_result r;
         char name[64];
         c.b = make_bsdf(MATERIAL_DIFFUSE, v3(0.8f, 0.5f, 0.2f), 1.5f);
         c.wo = dir(thetas[k], 0.7);
         snprintf(name, sizeof name, "diffuse, wo at %g deg", thetas[k]);
-        memset(&s, 0, sizeof s);
-        s.name = name;
-        s.sample = sample_diffuse;
-        s.pdf = pdf_diffuse;
-        s.ctx = &c;
+        s = chi2_dir_spec_of(name, bsdf_case_sample, bsdf_case_pdf, &c, 0.0);
         s.seed = 20 + k;
         s.tests = CHI2_TESTS;
         r = chi2_run_directions(&s);

@@ -271,15 +271,8 @@ static void test_sample_area(void)
     vec3 n;
     c.p = disk(v3(0.5f, -1, 2), v3(1, 2, -2), 1.5f);
     v3_basis(c.p.p[1], &c.t, &c.b);
-    memset(&s, 0, sizeof s);
-    s.name = "disk area sampling";
-    s.sample = sample_disk_polar;
-    s.density = uniform_polar;
-    s.ctx = &c;
-    s.x1 = 1.0;
-    s.y1 = 2.0 * PI;
-    s.nx = 40;
-    s.ny = 80;
+    s = chi2_rect_spec("disk area sampling", sample_disk_polar, uniform_polar, &c, 0.0, 1.0, 0.0,
+                       2.0 * PI, 40, 80);
     s.seed = 9;
     s.tests = CHI2_TESTS;
     r = chi2_run(&s);

@@ -31,18 +31,7 @@ static int near_float(double got, double want)
 static struct chi2_spec spec(const char *name, chi2_sample_fn sample, chi2_density_fn density, void *ctx,
                              double x0, double x1, int nx, int ny, uint64_t seed)
 {
-    struct chi2_spec s;
-    memset(&s, 0, sizeof s);
-    s.name = name;
-    s.sample = sample;
-    s.density = density;
-    s.ctx = ctx;
-    s.x0 = x0;
-    s.x1 = x1;
-    s.y0 = 0.0;
-    s.y1 = 1.0;
-    s.nx = nx;
-    s.ny = ny;
+    struct chi2_spec s = chi2_rect_spec(name, sample, density, ctx, x0, x1, 0.0, 1.0, nx, ny);
     s.seed = seed;
     s.tests = CHI2_TESTS;
     return s;

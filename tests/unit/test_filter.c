@@ -54,26 +54,12 @@ static double density_polar(void *ctx, double r, double phi)
 
 static void chi2_filter(const char *name, enum filter_kind k, int polar, uint64_t seed)
 {
-    struct chi2_spec s;
-    struct chi2_result r;
     double rad = mc_filter_radius(k);
-    memset(&s, 0, sizeof s);
-    s.name = name;
-    s.ctx = &k;
-    if (polar) {
-        s.sample = sample_polar;
-        s.density = density_polar;
-        s.x1 = rad;
-        s.y1 = 2.0 * CHI2_PI;
-        s.nx = 40;
-        s.ny = 80;
-    } else {
-        s.sample = sample_cartesian;
-        s.density = density_cartesian;
-        s.x0 = s.y0 = -rad;
-        s.x1 = s.y1 = rad;
-        s.nx = s.ny = 40;
-    }
+    struct chi2_spec s = polar ? chi2_rect_spec(name, sample_polar, density_polar, &k, 0.0, rad, 0.0,
+                                                2.0 * CHI2_PI, 40, 80)
+                               : chi2_rect_spec(name, sample_cartesian, density_cartesian, &k, -rad,
+                                                rad, -rad, rad, 40, 40);
+    struct chi2_result r;
     s.seed = seed;
     s.tests = CHI2_TESTS;
     r = chi2_run(&s);

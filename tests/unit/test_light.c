@@ -560,12 +560,7 @@ static void chi2_light(const char *name, const char *text, float time, vec3 towa
         r = chi2_run(&q);
     } else {
         struct chi2_dir_spec d;
-        memset(&d, 0, sizeof d);
-        d.name = name;
-        d.sample = dir_sample;
-        d.pdf = dir_pdf;
-        d.ctx = &c;
-        d.theta_max = theta_max;
+        d = chi2_dir_spec_of(name, dir_sample, dir_pdf, &c, theta_max);
         d.ntheta = 120;
         d.nphi = 240;
         d.samples = 1000000;

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "bsdf/bsdf_impl.h"
+#include "bsdf_util.h"
 #include "chi2.h"
 #include "sample/warp.h"
 #include "scene/scene.h"
@@ -15,12 +16,6 @@
 #define CHI2_TESTS 28
 
 static const double PI = 3.14159265358979323846;
-
-static vec2 rand2(pcg32 *r)
-{
-    float a = pcg32_float(r);
-    return v2(a, pcg32_float(r));
-}
 
 static struct bsdf make(enum material_kind kind, vec3 color, float ior, float alpha)
 {
@@ -233,25 +228,6 @@ static void test_ggx_smith(void)
 
 /* ---- chi-square of sampling against pdf ---- */
 
-struct dir_case { struct bsdf b; vec3 wo; };
-
-/* Delta samples are not in the pdf: they count as missing, like failed draws. */
-static int sample_dir(void *ctx, pcg32 *rng, vec3 *w)
-{
-    const struct dir_case *c = (const struct dir_case *)ctx;
-    struct bsdf_sample s;
-    float uc = pcg32_float(rng);
-    if (!mc_bsdf_sample(&c->b, c->wo, uc, rand2(rng), &s) || s.delta)
-        return 0;
-    *w = s.wi;
-    return 1;
-}
-static double pdf_dir(void *ctx, vec3 wi)
-{
-    const struct dir_case *c = (const struct dir_case *)ctx;
-    return mc_bsdf_pdf(&c->b, c->wo, wi);
-}
-
 static int chi2_count;
 
 /* One chi-square test over wo's hemisphere (opaque materials), whose rim is where the
@@ -265,7 +241,7 @@ static int chi2_count;
  * and 89°). */
 static void run_chi2(const char *what, struct bsdf b, double theta)
 {
-    struct dir_case c;
+    struct bsdf_case c;
     struct chi2_dir_spec s;
     struct chi2_result r;
     char name[96];
@@ -273,12 +249,7 @@ static void run_chi2(const char *what, struct bsdf b, double theta)
     c.b = b;
     c.wo = dir(theta, 0.7);
     snprintf(name, sizeof name, "%s, alpha %g, wo at %g deg", what, b.alpha, theta);
-    memset(&s, 0, sizeof s);
-    s.name = name;
-    s.sample = sample_dir;
-    s.pdf = pdf_dir;
-    s.ctx = &c;
-    s.theta_max = PI / 2;
+    s = chi2_dir_spec_of(name, bsdf_case_sample, bsdf_case_pdf, &c, PI / 2);
     s.nphi = theta >= 85.0 ? 640 : 160;
     s.seed = 1000 + (uint64_t)chi2_count;
     s.tests = CHI2_TESTS;
@@ -307,7 +278,7 @@ static double theta_for_jump(double jump_deg)
 
 static void run_chi2_glass(float alpha, double theta)
 {
-    struct dir_case c;
+    struct bsdf_case c;
     struct chi2_dir_spec s;
     struct chi2_result r;
     char name[96];
@@ -315,11 +286,7 @@ static void run_chi2_glass(float alpha, double theta)
     c.b = make(MATERIAL_GLASS, v3(1.0f, 0.9f, 0.8f), 1.5f, alpha);
     c.wo = dir(theta, 0.7);
     snprintf(name, sizeof name, "glass ior 1.5, alpha %g, wo at %.2f deg", alpha, theta);
-    memset(&s, 0, sizeof s);
-    s.name = name;
-    s.sample = sample_dir;
-    s.pdf = pdf_dir;
-    s.ctx = &c;
+    s = chi2_dir_spec_of(name, bsdf_case_sample, bsdf_case_pdf, &c, 0.0);
     s.ntheta = 180;
     s.seed = 1000 + (uint64_t)chi2_count;
     s.tests = CHI2_TESTS;

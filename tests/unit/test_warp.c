@@ -87,12 +87,7 @@ static void check_direction_warp(const char *name, chi2_dir_sample_fn sample, ch
 {
     struct chi2_dir_spec s;
     struct chi2_result r;
-    memset(&s, 0, sizeof s);
-    s.name = name;
-    s.sample = sample;
-    s.pdf = pdf;
-    s.ctx = ctx;
-    s.theta_max = theta_max;
+    s = chi2_dir_spec_of(name, sample, pdf, ctx, theta_max);
     s.seed = seed;
     s.tests = CHI2_TESTS;
     r = chi2_run_directions(&s);
@@ -151,15 +146,7 @@ static struct chi2_result run_2d(const char *name, chi2_sample_fn sample, chi2_d
                                  void *ctx, double y1, uint64_t seed, int quiet)
 {
     struct chi2_spec s;
-    memset(&s, 0, sizeof s);
-    s.name = name;
-    s.sample = sample;
-    s.density = density;
-    s.ctx = ctx;
-    s.x1 = 1.0;
-    s.y1 = y1;
-    s.nx = 50;
-    s.ny = 100;
+    s = chi2_rect_spec(name, sample, density, ctx, 0.0, 1.0, 0.0, y1, 50, 100);
     s.seed = seed;
     s.tests = CHI2_TESTS;
     s.quiet = quiet;
