@@ -1,4 +1,4 @@
-/* bvh_node.h: the 8-wide BVH node, private to src/geom/bvh.c (and read by the BVH test and the
+/* bvh_node.h: the 8-wide BVH node, private to src/geom/bvh.c and bvh_build.c (and read by the BVH test and the
  * benchmark's statistics). 256 bytes, four 64-byte cache lines. */
 #ifndef MCRT_BVH_NODE_H
 #define MCRT_BVH_NODE_H
@@ -9,6 +9,11 @@
  * SSE halves) traced 15 to 30% faster than 4-wide ones, from the shallower tree (depth 7 against
  * 9 to 14). A multiple of 4, for the SSE node test. */
 #define BVH_WIDTH 8
+
+/* No node is deeper than this (the build guarantees it, see SAH_DEPTH in bvh_build.c): a traversal
+ * pushes at most BVH_WIDTH - 1 nodes per level, so a stack of (BVH_WIDTH - 1) * BVH_DEPTH_MAX
+ * entries cannot overflow. */
+#define BVH_DEPTH_MAX 64
 
 /* The root is node 0. A node holds up to BVH_WIDTH children, each either an inner node or a leaf
  * (a run of primitives), with their boxes stored plane by plane (structure of arrays), so that one
