@@ -4,15 +4,28 @@
 
 #include "scene/scene.h"
 
+/* The α mc_bsdf_init gives material m: 0 (smooth) below MC_BSDF_SMOOTH_ALPHA. !(α >= …) also
+ * sends a NaN α to the smooth case. A glass of ior 1 is no interface at all, rough or not: light
+ * passes straight through (specular.c), as in pbrt-v4. */
+static float effective_alpha(const struct material *m)
+{
+    return !(m->alpha >= MC_BSDF_SMOOTH_ALPHA) || (m->kind == MATERIAL_GLASS && m->ior == 1.0f) ? 0.0f : m->alpha;
+}
+
+void mc_bsdf_prepare(struct material *m)
+{
+    m->ms.ready = 0;
+    if (m->kind == MATERIAL_GLASS && effective_alpha(m) > 0.0f)
+        mc_dielectric_ms_build(&m->ms, m->alpha, m->ior);
+}
+
 void mc_bsdf_init(struct bsdf *b, const struct material *m)
 {
     b->kind = (int)m->kind;
     b->color = m->color;
     b->ior = m->ior;
-    /* !(α >= …) also sends a NaN α to the smooth case. A glass of ior 1 is no interface at all,
-     * rough or not: light passes straight through (specular.c), as in pbrt-v4. */
-    b->alpha = !(m->alpha >= MC_BSDF_SMOOTH_ALPHA) || (b->kind == MATERIAL_GLASS && b->ior == 1.0f) ? 0.0f
-                                                                                                    : m->alpha;
+    b->alpha = effective_alpha(m);
+    b->ms = b->kind == MATERIAL_GLASS && b->alpha > 0.0f && m->ms.ready ? &m->ms : NULL;
     b->eta = m->eta;
     b->k = m->k;
     b->albedo = v3s(0.0f);

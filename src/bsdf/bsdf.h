@@ -33,6 +33,20 @@ struct material;
  * exactly as the mirror. */
 #define MC_BSDF_SMOOTH_ALPHA 1e-3f
 
+/* The multiple-scattering compensation of rough glass (dielectric_ms.c; Kulla and Conty 2017):
+ * the single-scattering GGX dielectric's directional energy albedo Ê from each side, tabulated
+ * for one material (α, ior) at MC_MS_NODES nodes x_k = k/(MC_MS_NODES − 1) of x = √μ, and the
+ * constants of the added lobe. Side 0 is the outside, 1 the inside. */
+#define MC_MS_NODES 32
+struct mc_dielectric_ms {
+    float e[2][MC_MS_NODES];   /* Ê at x_k, linearly interpolated in x */
+    float cdf[2][MC_MS_NODES]; /* sampling μ on a side: probability of the segments before node k */
+    float norm[2];             /* 1/(π W) of that sampling density (dielectric_ms.c) */
+    float c[2][2];             /* f_ms(wo on a, wi on b) = c[a][b] (1 − Ê_a(μo)) (1 − Ê_b(μi)) */
+    float t[2];                /* the share of side a's compensated energy that crosses */
+    int ready;                 /* filled (mc_bsdf_prepare) for this material's α and ior */
+};
+
 struct bsdf {
     int kind;        /* enum material_kind */
     vec3 color;      /* albedo / mirror reflectance / glass tint / plastic base albedo */
@@ -42,6 +56,8 @@ struct bsdf {
     vec3 albedo;     /* plastic: directional albedo of the base seen through a smooth coat, per
                         unit coat transmittance (plastic.c) */
     float fdr;       /* plastic: the coat's hemispherical-average Fresnel reflectance from outside */
+    const struct mc_dielectric_ms *ms; /* rough glass: its material's compensation, or NULL
+                                          (material not prepared: single scattering only) */
 };
 
 struct bsdf_sample {
@@ -52,6 +68,11 @@ struct bsdf_sample {
     float eta;       /* relative ior crossed (ior or 1/ior on transmission, else 1): RR uses it */
 };
 
+/* Per-material precomputation, once the material's parameters are final (mc_scene_prepare):
+ * rough glass tabulates its multiple-scattering compensation in m->ms (~1 ms, deterministic);
+ * other materials mark it unused. */
+void mc_bsdf_prepare(struct material *m);
+/* b refers to m (rough glass's compensation table), which must outlive it. */
 void mc_bsdf_init(struct bsdf *b, const struct material *m);
 /* Whether every lobe is a delta lobe (no light sampling is useful then): mirror, smooth glass
  * (or glass of ior 1, which is no interface at all), smooth metal. */

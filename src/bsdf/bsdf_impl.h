@@ -61,10 +61,21 @@ vec3 mc_conductor_eval(const struct bsdf *b, vec3 wo, vec3 wi);
 float mc_conductor_pdf(const struct bsdf *b, vec3 wo, vec3 wi);
 int mc_conductor_sample(const struct bsdf *b, vec3 wo, vec2 u, struct bsdf_sample *out);
 
-/* Rough glass (dielectric.c), α > 0: GGX reflection and refraction (Walter et al. 2007). */
+/* Rough glass (dielectric.c), α > 0: GGX reflection and refraction (Walter et al. 2007), plus
+ * the compensation lobe of b->ms when set. */
 vec3 mc_dielectric_eval(const struct bsdf *b, vec3 wo, vec3 wi);
 float mc_dielectric_pdf(const struct bsdf *b, vec3 wo, vec3 wi);
 int mc_dielectric_sample(const struct bsdf *b, vec3 wo, float uc, vec2 u, struct bsdf_sample *out);
+
+/* Rough glass's multiple-scattering compensation lobe (dielectric_ms.c). build tabulates it for
+ * α and ior; albedo is the tabulated single-scattering energy albedo Ê_side(|mu|); eval the
+ * lobe's f (untinted: the caller tints crossings); pdf the density of sample's wi, with which
+ * sample crosses with probability ms->t[side of wo] (uc) and draws |μi| from the table (u). */
+void mc_dielectric_ms_build(struct mc_dielectric_ms *ms, float alpha, float ior);
+float mc_dielectric_ms_albedo(const struct mc_dielectric_ms *ms, int side, float mu);
+float mc_dielectric_ms_eval(const struct mc_dielectric_ms *ms, vec3 wo, vec3 wi);
+float mc_dielectric_ms_pdf(const struct mc_dielectric_ms *ms, vec3 wo, vec3 wi);
+int mc_dielectric_ms_sample(const struct mc_dielectric_ms *ms, vec3 wo, float uc, vec2 u, vec3 *wi);
 
 /* Plastic (plastic.c): a diffuse base under a dielectric coat, smooth (α = 0) or GGX. */
 void mc_plastic_init(struct bsdf *b);

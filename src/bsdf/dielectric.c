@@ -1,7 +1,8 @@
 /* dielectric.c: rough glass: GGX microfacet reflection and refraction at a dielectric interface,
- * each microfacet choosing between them by its Fresnel reflectance.
- * Reference: Walter et al. 2007, "Microfacet Models for Refraction through Rough Surfaces"
- * (eq. 13–21); pbrt-v4 §9.7 (DielectricBxDF, rough case). */
+ * each microfacet choosing between them by its Fresnel reflectance, plus the energy-compensation
+ * lobe of dielectric_ms.c for the light that scatters more than once among the microfacets.
+ * References: Walter et al. 2007, "Microfacet Models for Refraction through Rough Surfaces"
+ * (eq. 13–21); pbrt-v4 §9.7 (DielectricBxDF, rough case); Kulla and Conty 2017. */
 #include "bsdf/bsdf_impl.h"
 
 /* Walter's formulas below are written for wo on the front side. A wo inside (z < 0) is the
@@ -50,13 +51,13 @@ static float refraction_jacobian(vec3 wo, vec3 wi, vec3 wm, float eta)
     return eta * eta * fabsf(ci) / (d * d);
 }
 
-vec3 mc_dielectric_eval(const struct bsdf *b, vec3 wo, vec3 wi)
+/* ---- single scattering ---- */
+
+/* f and pdf of the single-scattering model; wo.z, wi.z != 0. */
+static vec3 single_eval(const struct bsdf *b, vec3 wo, vec3 wi)
 {
     vec3 wm;
-    float eta, c, f;
-    if (wo.z == 0.0f || wi.z == 0.0f)
-        return v3s(0.0f);
-    eta = orient(b, &wo, &wi);
+    float eta = orient(b, &wo, &wi), c, f;
     if (wi.z > 0.0f) {
         /* Reflection, untinted as smooth glass. */
         f = mc_ggx_reflection(b->alpha, wo, wi, &c);
@@ -74,15 +75,12 @@ vec3 mc_dielectric_eval(const struct bsdf *b, vec3 wo, vec3 wi)
     return v3_scale(b->color, f);
 }
 
-float mc_dielectric_pdf(const struct bsdf *b, vec3 wo, vec3 wi)
+static float single_pdf(const struct bsdf *b, vec3 wo, vec3 wi)
 {
     vec3 wm;
-    float eta;
-    if (wo.z == 0.0f || wi.z == 0.0f)
-        return 0.0f;
-    eta = orient(b, &wo, &wi);
+    float eta = orient(b, &wo, &wi);
     /* The visible normal's density, times the probability of the lobe (F or 1 − F:
-     * mc_dielectric_sample), through the lobe's Jacobian. */
+     * single_sample), through the lobe's Jacobian. */
     if (wi.z > 0.0f)
         return mc_fresnel_dielectric(mc_ggx_half(wo, wi, &wm), eta) * mc_ggx_reflection_pdf(b->alpha, wo, wi);
     if (!refraction_normal(wo, wi, eta, &wm))
@@ -91,36 +89,78 @@ float mc_dielectric_pdf(const struct bsdf *b, vec3 wo, vec3 wi)
            refraction_jacobian(wo, wi, wm, eta);
 }
 
+/* A direction from the visible normals of wo (wo.z != 0): reflected with probability F, else
+ * refracted. Returns 0 when it leaves on the wrong side (the loss the compensation restores). */
+static int single_sample(const struct bsdf *b, vec3 wo, float uc, vec2 u, vec3 *wi)
+{
+    vec3 w = wo, wm, v = v3s(0.0f);
+    float eta = orient(b, &w, &v); /* wi is not known yet: flipping its zero is harmless */
+    wm = mc_ggx_sample_visible(b->alpha, w, u);
+    if (uc < mc_fresnel_dielectric(v3_dot(w, wm), eta)) {
+        v = mc_reflect(w, wm);
+        if (v.z <= 0.0f)
+            return 0;
+    } else if (!mc_refract(w, wm, eta, &v) || v.z >= 0.0f) {
+        return 0; /* (no total internal reflection here: F < 1 at wm) */
+    }
+    *wi = wo.z > 0.0f ? v : mc_mirror_z(v);
+    return 1;
+}
+
+/* ---- with the compensation lobe ---- */
+
+/* The probability of sampling the compensation lobe from wo: its share of wo's energy,
+ * 1 − Ê(μo), so that each lobe is sampled in proportion to what it scatters. */
+static float compensation_probability(const struct bsdf *b, vec3 wo)
+{
+    return b->ms ? 1.0f - mc_dielectric_ms_albedo(b->ms, wo.z < 0.0f, wo.z) : 0.0f;
+}
+
+vec3 mc_dielectric_eval(const struct bsdf *b, vec3 wo, vec3 wi)
+{
+    vec3 f;
+    if (wo.z == 0.0f || wi.z == 0.0f)
+        return v3s(0.0f);
+    f = single_eval(b, wo, wi);
+    if (b->ms) {
+        /* Tinted on crossing, as the refraction is. */
+        float g = mc_dielectric_ms_eval(b->ms, wo, wi);
+        f = v3_add(f, wo.z * wi.z < 0.0f ? v3_scale(b->color, g) : v3s(g));
+    }
+    return f;
+}
+
+float mc_dielectric_pdf(const struct bsdf *b, vec3 wo, vec3 wi)
+{
+    float p = compensation_probability(b, wo), single;
+    if (wo.z == 0.0f || wi.z == 0.0f)
+        return 0.0f;
+    single = single_pdf(b, wo, wi);
+    return p > 0.0f ? (1.0f - p) * single + p * mc_dielectric_ms_pdf(b->ms, wo, wi) : single;
+}
+
 int mc_dielectric_sample(const struct bsdf *b, vec3 wo, float uc, vec2 u, struct bsdf_sample *out)
 {
-    vec3 w = wo, wm, wi = v3s(0.0f);
-    float eta, f;
+    float p = compensation_probability(b, wo);
+    int ok;
     if (wo.z == 0.0f)
         return 0;
-    eta = orient(b, &w, &wi); /* wi is not known yet: flipping its zero is harmless */
-    wm = mc_ggx_sample_visible(b->alpha, w, u);
-    f = mc_fresnel_dielectric(v3_dot(w, wm), eta);
-    if (uc < f) {
-        /* Reflection, with probability F: weight f cosθi / (F D_wo / (4 wo·wm)) = G2/G1(wo). */
-        wi = mc_reflect(w, wm);
-        if (wi.z <= 0.0f)
-            return 0;
-        out->weight = v3s(1.0f);
-        out->eta = 1.0f;
-    } else {
-        /* Refraction, with probability 1 − F (< 1: no total internal reflection at wm): weight
-         * tint · G2/G1(wo) / η², the 1 − F, D and Jacobian cancelling likewise. */
-        if (!mc_refract(w, wm, eta, &wi) || wi.z >= 0.0f)
-            return 0;
-        out->weight = v3_scale(b->color, 1.0f / (eta * eta));
-        out->eta = eta;
-    }
-    out->weight = v3_scale(out->weight, mc_ggx_g2(b->alpha, w, wi) / mc_ggx_g1(b->alpha, w));
-    out->wi = wo.z > 0.0f ? wi : mc_mirror_z(wi);
-    /* The pdf of wi as mc_dielectric_pdf computes it, from the normal recomputed from wo and
-     * wi: the value light sampling's MIS weights use too; a wi that rounding left no microfacet
-     * to produce is dropped. */
+    /* uc picks the lobe, then is rescaled to [0, 1) to pick within it. */
+    if (uc < p)
+        ok = mc_dielectric_ms_sample(b->ms, wo, uc / p, u, &out->wi);
+    else
+        ok = single_sample(b, wo, p > 0.0f ? fminf((uc - p) / (1.0f - p), 0x1.fffffep-1f) : uc, u, &out->wi);
+    if (!ok)
+        return 0;
+    /* The pdf of wi as mc_dielectric_pdf computes it, over both lobes: the value light
+     * sampling's MIS weights use too; a wi that rounding left no microfacet to produce is
+     * dropped. The weight is f |cosθi| / pdf of the mixture (with both lobes no closed form
+     * cancels). */
     out->pdf = mc_dielectric_pdf(b, wo, out->wi);
+    if (!(out->pdf > 0.0f))
+        return 0;
+    out->weight = v3_scale(mc_dielectric_eval(b, wo, out->wi), fabsf(out->wi.z) / out->pdf);
+    out->eta = wo.z * out->wi.z < 0.0f ? (wo.z > 0.0f ? b->ior : 1.0f / b->ior) : 1.0f;
     out->delta = 0;
-    return out->pdf > 0.0f;
+    return 1;
 }

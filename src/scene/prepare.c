@@ -1,7 +1,7 @@
 /* prepare.c: turns a parsed scene into a renderable one: static primitives first with their BVH,
  * then the moving ones with a second BVH bounded over the shutter, one area light per emitting
  * primitive, the environment (the default white sky when nothing emits), and the alias table that
- * picks lights in proportion to power. */
+ * picks lights in proportion to power; and each material's precomputed BSDF tables. */
 #include "scene/scene.h"
 
 #include <stdlib.h>
@@ -70,6 +70,8 @@ mcrt_status mc_scene_prepare(struct scene *s, mc_diag *d)
         return MCRT_OK;
     if (s->material_count == 0)
         return mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
+    for (i = 0; i < s->material_count; i++)
+        mc_bsdf_prepare(&s->materials[i]);
     /* Both builds reorder primitives, so lights (which index them) are made after. */
     st = partition(s, d);
     if (st == MCRT_OK)

@@ -6,6 +6,7 @@
 
 #include <stddef.h>
 
+#include "bsdf/bsdf.h"      /* struct mc_dielectric_ms */
 #include "core/diag.h"
 #include "geom/bvh.h"
 #include "geom/motion.h"
@@ -50,6 +51,7 @@ struct material {
     float ior;                       /* glass, plastic: index of refraction inside / outside (1.5) */
     float alpha;                     /* GGX α = roughness² (metal, glass, plastic); 0 = smooth */
     vec3 eta, k;                     /* metal: complex index of refraction per channel */
+    struct mc_dielectric_ms ms;      /* rough glass: filled by mc_scene_prepare (mc_bsdf_prepare) */
 };
 
 struct scene {

@@ -227,35 +227,39 @@ static void same_within_noise(const char *what, const char *test, const struct i
 
 static void image_free(struct image *im) { free(im->px); }
 
-/* 1. Inside an emitting sphere of albedo ρ the radiance is Le Σ ρ^k = 1/(1−ρ). With Russian
- * roulette the path length is geometric, so one path's estimate has relative deviation near 1
- * and a 1% error at 4σ needs about (4/0.01)² ≈ 1.6e5 paths at ρ → 1 (measured 0.6 at ρ = 0.9,
- * 0.9 at 0.99 and 0.999). The test runs what the time budget allows and asserts 4σ; the notes
- * give the spp and seconds the 1% level costs. */
+/* 1. Inside an emitting sphere of albedo ρ the radiance is Le Σ ρ^k = 1/(1−ρ), which must come out
+ * within 1% with 4σ <= 1% (Russian roulette must stay unbiased). With roulette the path length is
+ * geometric; one path's estimate has a relative deviation of 0.35 to 0.40 here (measured), so
+ * 1% at 4σ needs (4·0.4/0.01)² ≈ 2.6e4 paths (32768 are run), each ~1/(1−ρ) bounces long. Only
+ * the image mean matters, so the film is 32x1 (two 16-pixel tiles: both threads busy) with many spp, and
+ * the strategy is BSDF sampling alone: the walls are the emitter, so every bounce already hits it,
+ * and light sampling would double the cost of a bounce without lowering this variance. */
 static void case_albedo(void)
 {
     static const struct { const char *rho; double expect; int spp; } c[] = {
-        {"0.9", 10.0, 256}, {"0.99", 100.0, 64}, {"0.999", 1000.0, 8}};
-    char *base = slurp(DIR "albedo.mcrt");
+        {"0.9", 10.0, 1024}, {"0.99", 100.0, 1024}, {"0.999", 1000.0, 1024}};
+    char *base = slurp(DIR "albedo.mcrt"), *film = base ? subst(base, "width 16 height 16", "width 32 height 1") : NULL;
     size_t i;
-    T_CHECK(base != NULL, "%s", __func__);
-    for (i = 0; base && i < sizeof c / sizeof c[0]; i++) {
+    T_CHECK(film != NULL, "%s", __func__);
+    for (i = 0; film && i < sizeof c / sizeof c[0]; i++) {
+        struct t_render_opts o = {0, 2, 0, 1, "bsdf"};
         char mat[64];
         char *text;
         struct image im;
-        double m, se, t0 = now(), secs, rel_dev, need;
+        double m, se, t0 = now(), secs;
         snprintf(mat, sizeof mat, "diffuse %s", c[i].rho);
-        text = subst(base, "diffuse 0.99", mat);
-        if (render_text(text, c[i].spp, 1, &im) == 0) {
+        text = subst(film, "diffuse 0.99", mat);
+        o.spp = c[i].spp;
+        memset(&im, 0, sizeof im);
+        im.px = t_render(text, &o, &im.w, &im.h, &im.st);
+        if (im.px) {
             secs = now() - t0;
             image_mean(&im, -1, &m, &se);
-            rel_dev = se / m * sqrt((double)im.w * im.h); /* of one pixel of spp paths */
-            need = (4.0 * rel_dev / 0.01) * (4.0 * rel_dev / 0.01) / ((double)im.w * im.h);
-            T_NOTE("albedo %s: %.5g (expect %g), se %.2f%%, %d spp on %dx%d in %.2f s; 1%% at 4 sigma "
-                   "needs %.0f spp here (%.1f s)",
-                   c[i].rho, m, c[i].expect, 100.0 * se / m, c[i].spp, im.w, im.h, secs,
-                   need * c[i].spp, secs * need);
-            T_CHECK(fabs(m - c[i].expect) <= 4.0 * se, "%s", __func__);
+            T_NOTE("albedo %s: %.5g (expect %g), se %.3f%% (one path %.2f), %d spp on %dx%d, 2 threads, %.2f s",
+                   c[i].rho, m, c[i].expect, 100.0 * se / m, se / m * sqrt((double)im.w * im.h * c[i].spp),
+                   c[i].spp, im.w, im.h, secs);
+            T_CHECK(fabs(m - c[i].expect) <= 0.01 * c[i].expect, "%s: %g", __func__, m);
+            T_CHECK(4.0 * se <= 0.01 * c[i].expect, "%s: 4 sigma %g above 1%%", __func__, 4.0 * se);
             T_CHECK(im.st.nan_count == 0, "%s", __func__);
             image_free(&im);
         } else {
@@ -263,6 +267,7 @@ static void case_albedo(void)
         }
         free(text);
     }
+    free(film);
     free(base);
 }
 
@@ -443,15 +448,40 @@ static void case_glass(void)
             T_NOTE("glass furnace '%s': sphere mean %.6f se %.2g, pixels %.4f..%.4f", variants[v], m,
                    se, lo, hi);
             /* Smooth glass: every path carries weight exactly 1 (Fresnel sampled by its own
-             * probability), so every pixel is 1 up to float rounding (1e-4). Rough glass is
-             * single-scattering GGX, which loses the light that would scatter again among the
-             * microfacets (Heitz et al. 2016: a few % at α = 0.09, most at grazing angles; the
-             * BSDF's own albedo measures 0.999 at normal incidence and 0.92 at cos 0.1 from
-             * outside): it must not exceed 1 (4σ), and its loss is reported. */
-            if (v == 1)
-                T_CHECK(m <= 1.0 + 4.0 * se, "%s", __func__);
-            else
+             * probability), so every pixel is 1 up to float rounding (1e-4). Rough glass has
+             * single-scattering GGX's loss (measured 0.955 on average, pixels down to 0.81)
+             * restored by the compensation lobe of src/bsdf/dielectric_ms.c: its sphere mean
+             * must be 1 within 4 standard errors, and so must every 4x4 block holding at least
+             * 16 sphere values, against the spread of that block's own values (noise varies
+             * over the sphere; 4.5 se as in same_within_noise, at most 16 blocks). */
+            if (v == 1) {
+                double worst = 0.0;
+                int bx, by, x, y, c;
+                T_CHECK(fabs(m - 1.0) <= 4.0 * se, "%s: rough glass sphere mean %.5f", __func__, m);
+                for (by = 0; by + 4 <= im.h; by += 4)
+                    for (bx = 0; bx + 4 <= im.w; bx += 4) {
+                        double s1 = 0.0, s2 = 0.0, var;
+                        int k = 0;
+                        for (y = by; y < by + 4; y++)
+                            for (x = bx; x < bx + 4; x++)
+                                for (c = 0; c < 3; c++) {
+                                    double p = im.px[3 * ((size_t)y * im.w + x) + c] - 1.0;
+                                    if (p != 0.0) {
+                                        s1 += p;
+                                        s2 += p * p;
+                                        k++;
+                                    }
+                                }
+                        if (k < 16)
+                            continue;
+                        var = (s2 - s1 * s1 / k) / (k - 1); /* of one value */
+                        worst = fmax(worst, fabs(s1 / k) / sqrt(var / k));
+                    }
+                T_NOTE("rough glass furnace: worst 4x4-block z %.2f", worst);
+                T_CHECK(worst <= 4.5, "%s: a block of the rough glass sphere is off 1", __func__);
+            } else {
                 T_CHECK(lo >= 0.9999f && hi <= 1.0001f, "%s", __func__);
+            }
             T_CHECK(im.st.nan_count == 0, "%s", __func__);
             image_free(&im);
         } else {
