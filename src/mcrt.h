@@ -103,6 +103,13 @@ typedef struct mcrt_options {
     double time_budget;
     double target_error;
     const char *sampler;    /* "random", "stratified" or "sobol"; NULL = the scene's */
+    /* Nonzero: adaptive sampling. A uniform first pass, then passes that give each pixel samples
+     * in proportion to its estimated error (sigma / sqrt(mean^2 + 0.01)), with a fifth of each
+     * pass spread uniformly so that no pixel is starved. spp is then the mean samples per pixel:
+     * of the whole render (in passes of spp/8, at least 8) without time_budget and target_error,
+     * of each pass with either. Deterministic like the passes; a crop is sampled by its own
+     * errors, so its pixels differ from the whole image's. */
+    int adaptive;
 } mcrt_options;
 
 /* Fill o with defaults (all zero / NULL) and set o->size. */
@@ -136,9 +143,15 @@ typedef struct mcrt_stats {
     double est_relmse;
     double efficiency;   /* 1 / (est_relmse * seconds): higher is better at equal quality */
     int passes;          /* complete passes in the image (spp counts all of them) */
+    int adaptive;        /* whether the render was adaptive (spp is then the mean per pixel) */
+    int spp_min, spp_max; /* the fewest and most samples a pixel has (both spp when uniform) */
 } mcrt_stats;
 /* Facts about the last run. */
 void mcrt_render_stats(const mcrt_render *r, mcrt_stats *out);
+/* Write the last run's statistics and seed as a JSON object (the keys of mcrt(1)'s --stats), with
+ * the labels scene and image (NULL: null), in the same all-or-nothing way as mcrt_render_save. */
+mcrt_status mcrt_render_save_stats(mcrt_render *r, const char *path, const char *scene,
+                                   const char *image);
 /* The last error on r, "" if none. Owned by r. */
 const char *mcrt_render_error(const mcrt_render *r);
 void mcrt_render_free(mcrt_render *r);

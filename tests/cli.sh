@@ -197,6 +197,18 @@ if mkfifo "$tmp/pipe" 2>/dev/null; then
         fail "--stats to a pipe" "status $rc; $(ls -l "$tmp/pipe" 2>&1); $(cat "$tmp/piped")"
     fi
 fi
+# A symbolic link (like /dev/stdout -> /proc/self/fd/1 with the output redirected to a file) is
+# written through, for the statistics and for images: renaming over it would replace the link.
+printf 'old' >"$tmp/linked.json"
+printf 'old' >"$tmp/linked.pfm"
+ln -s linked.json "$tmp/link.json" && ln -s linked.pfm "$tmp/link.pfm"
+run tiny.mcrt -o link.pfm --spp 1 --stats link.json
+if [ "$rc" -eq 0 ] && [ -L "$tmp/link.json" ] && [ -L "$tmp/link.pfm" ] &&
+    grep -q '"nan_count": 0,' "$tmp/linked.json" && [ "$(head -c 2 "$tmp/linked.pfm")" = PF ]; then
+    ok "--stats and -o to symbolic links: written through them, the links stay links"
+else
+    fail "--stats and -o to symbolic links" "status $rc; $(ls -l "$tmp"/link* 2>&1)"
+fi
 if command -v python3 >/dev/null 2>&1; then
     if python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); assert d["rays"] > 0' "$tmp/s.json"; then
         ok "--stats: valid JSON (python3), rays > 0"
@@ -217,6 +229,17 @@ fi
 run noisy.mcrt -o c.pfm --threads 2 --seed 8
 if [ "$rc" -eq 0 ] && ! cmp -s "$tmp/a.pfm" "$tmp/c.pfm"; then ok "another seed gives another image"; else
     fail "seed" "status $rc; --seed 8 gave the same bytes as --seed 7"; fi
+# Adaptive passes: the counts come from the image so far, which is itself thread-independent.
+run noisy.mcrt -o d.pfm --threads 1 --seed 7 --spp 16 --adaptive --sampler sobol
+rc1=$rc
+run noisy.mcrt -o e.pfm --threads 2 --seed 7 --spp 16 --adaptive --sampler sobol
+if [ "$rc1" -eq 0 ] && [ "$rc" -eq 0 ] && cmp -s "$tmp/d.pfm" "$tmp/e.pfm" &&
+    grep -qE ', [0-9]+ passes, adaptive \([0-9]+ to [0-9]+ spp\)$' "$tmp/err"; then
+    ok "--adaptive --sampler sobol: the same bytes with 1 and 2 threads; $(grep -oE 'adaptive .*' "$tmp/err")"
+else
+    fail "adaptive determinism" "status $rc1/$rc: $(cat "$tmp/err"); $(cmp "$tmp/d.pfm" "$tmp/e.pfm" 2>&1)"
+fi
+expect "--sampler x" 2 "^mcrt: --sampler: expected random, stratified or sobol, got 'x'$" --sampler x tiny.mcrt
 
 # ---- --quiet ----
 run tiny.mcrt -o q.pfm --quiet

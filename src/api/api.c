@@ -7,11 +7,13 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "api/stats_json.h"
 #include "core/file.h"
 #include "export/pov.h"
 #include "geom/bvh_node.h"
 #include "integrator/integrator.h"
 #include "io/image.h"
+#include "render/adaptive.h"
 #include "render/passes.h"
 #include "render/render.h"
 #include "scene/features.h"
@@ -364,6 +366,7 @@ mcrt_status mcrt_render_run(mcrt_render *r)
     struct pass_result res;
     const struct scene *s;
     mcrt_status st;
+    uint64_t lo, hi;
     size_t n;
     int w, h;
     if (!r)
@@ -386,17 +389,24 @@ mcrt_status mcrt_render_run(mcrt_render *r)
         || (first_hit_aovs(r->opt.aovs) && mc_aov_init(&r->aov, w, h) != 0))
         return mc_fail(&r->err, MCRT_ERR_NOMEM, "out of memory for a %dx%d image", w, h);
     rs.aov = r->aov.pixels ? &r->aov : NULL;
+    rs.pixel_spp = NULL;
     __atomic_store_n(&r->cancel, 0, __ATOMIC_RELAXED);
     rs.cancel = &r->cancel;
     ps.time_budget = r->opt.time_budget;
     ps.target_error = r->opt.target_error;
     ps.max_passes = MAX_SPP / rs.spp;
+    ps.adaptive = r->opt.adaptive != 0;
     st = mc_render_passes(s, &rs, &ps, &r->film, &res, &r->err);
     mc_film_resolve(&r->film, r->rgb);
     r->stats.width = w;
     r->stats.height = h;
     r->stats.passes = res.passes;
-    r->stats.spp = rs.spp * (res.passes > 0 ? res.passes : 1);
+    /* The mean samples per pixel (rounded), and the extremes, which adaptive passes spread. */
+    r->stats.spp = res.passes > 0 ? (int)((res.samples + n / 2) / n) : rs.spp;
+    r->stats.adaptive = ps.adaptive;
+    mc_adaptive_count_range(&r->film, &lo, &hi);
+    r->stats.spp_min = res.passes > 0 ? (int)lo : rs.spp;
+    r->stats.spp_max = res.passes > 0 ? (int)hi : rs.spp;
     r->stats.threads = rs.threads;
     r->stats.seconds = res.seconds;
     r->stats.rays = res.rays;
@@ -458,6 +468,21 @@ mcrt_status mcrt_render_save(mcrt_render *r, const char *path)
     if (r->opt.aovs)
         return save_layers(r, path);
     return mc_image_write(path, r->rgb, r->film.width, r->film.height, &r->err);
+}
+
+mcrt_status mcrt_render_save_stats(mcrt_render *r, const char *path, const char *scene,
+                                   const char *image)
+{
+    struct mc_output out;
+    mcrt_status st;
+    if (!r)
+        return MCRT_ERR_INVALID;
+    if (!path)
+        return mc_fail(&r->err, MCRT_ERR_INVALID, "mcrt_render_save_stats: path is NULL");
+    if ((st = mc_output_open(&out, path, &r->err)) != MCRT_OK)
+        return st;
+    mc_stats_json(out.f, &r->stats, r->opt.seed, scene, image);
+    return mc_output_close(&out, MCRT_OK, &r->err);
 }
 
 void mcrt_render_stats(const mcrt_render *r, mcrt_stats *out)

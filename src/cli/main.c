@@ -2,7 +2,6 @@
  * image and optional JSON statistics. A thin client of the public API (mcrt.h) and nothing else. */
 #include <errno.h>
 #include <inttypes.h>
-#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -52,6 +51,9 @@ static const char usage[] =
     "  --time SECONDS      render passes of --spp samples until the time is spent\n"
     "  --target-error E    render passes of --spp samples until the estimated relative MSE\n"
     "                      is at most E\n"
+    "  --adaptive          after a uniform first pass, give each pixel samples in proportion\n"
+    "                      to its estimated error; --spp is then the mean per pixel\n"
+    "  --sampler NAME      random, stratified or sobol (default: the scene's)\n"
     "  --quiet             print nothing but errors\n"
     "  --help              print this help and exit\n"
     "  --version           print the version and the built-in image formats, and exit\n"
@@ -206,84 +208,11 @@ static void progress_clear(struct progress *p)
         fprintf(stderr, "\r%*s\r", p->width, "");
 }
 
-/* ---- statistics ---- */
-
-static void json_string(FILE *f, const char *s)
-{
-    fputc('"', f);
-    for (; *s; s++) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\')
-            fprintf(f, "\\%c", c);
-        else if (c < 0x20)
-            fprintf(f, "\\u%04x", c);
-        else
-            fputc(c, f);
-    }
-    fputc('"', f);
-}
-
-/* "  "KEY": VALUE" then end; null for NaN and infinities, which JSON cannot hold. */
-static void json_number(FILE *f, const char *key, double value, const char *end)
-{
-    if (isfinite(value))
-        fprintf(f, "  \"%s\": %.6g%s", key, value, end);
-    else
-        fprintf(f, "  \"%s\": null%s", key, end);
-}
-
-/* Write the statistics to a temporary file renamed over path when complete, so that a failure
- * leaves no partial file. Prints why and returns 0 on failure. */
-static int write_stats(const char *path, const char *scene, const char *image, uint64_t seed,
-                       const mcrt_stats *st)
-{
-    size_t len = strlen(path) + 32;
-    char *tmp = malloc(len);
-    struct stat sb;
-    /* A device or pipe (--stats /dev/stdout) is written in place: renaming over it would replace
-     * the device node. Regular files get a temporary file renamed over them when complete. */
-    int in_place = stat(path, &sb) == 0 && !S_ISREG(sb.st_mode);
-    FILE *f;
-    int ok;
-    if (!tmp) {
-        fprintf(stderr, "mcrt: cannot write '%s': out of memory\n", path);
-        return 0;
-    }
-    snprintf(tmp, len, "%s.tmp-%ld", path, (long)getpid());
-    f = fopen(in_place ? path : tmp, "w");
-    ok = f != NULL;
-    if (ok) {
-        fprintf(f, "{\n  \"scene\": ");
-        json_string(f, scene);
-        fprintf(f, ",\n  \"image\": ");
-        json_string(f, image);
-        fprintf(f,
-                ",\n  \"width\": %d,\n  \"height\": %d,\n  \"spp\": %d,\n  \"threads\": %d,\n"
-                "  \"seed\": %" PRIu64 ",\n  \"seconds\": %.6f,\n  \"rays\": %" PRIu64 ",\n"
-                "  \"mrays_per_second\": %.6g,\n  \"nan_count\": %" PRIu64 ",\n",
-                st->width, st->height, st->spp, st->threads, seed, st->seconds, st->rays,
-                st->seconds > 0.0 ? (double)st->rays / st->seconds * 1e-6 : 0.0, st->nan_count);
-        /* JSON has no NaN or infinity: an error that cannot be estimated (1 spp) is null. */
-        json_number(f, "est_relmse", st->est_relmse, ",\n");
-        json_number(f, "efficiency", st->efficiency, "\n}\n");
-        ok = !ferror(f);
-        ok = fclose(f) == 0 && ok;
-    }
-    ok = ok && (in_place || rename(tmp, path) == 0);
-    if (!ok) {
-        fprintf(stderr, "mcrt: cannot write '%s': %s\n", path, strerror(errno));
-        if (!in_place)
-            remove(tmp);
-    }
-    free(tmp);
-    return ok;
-}
-
 /* ---- the render command ---- */
 
 enum { OPT_OUTPUT, OPT_SPP, OPT_THREADS, OPT_SEED, OPT_INTEGRATOR, OPT_ALL_FEATURES, OPT_STATS,
        OPT_QUIET, OPT_HELP, OPT_VERSION, OPT_AOV, OPT_CROP, OPT_TIME, OPT_TARGET_ERROR,
-       OPT_END };
+       OPT_ADAPTIVE, OPT_SAMPLER, OPT_END };
 static const struct arg_spec render_options[OPT_END + 1] = {
     [OPT_OUTPUT] = {NULL, 'o', 1},        [OPT_SPP] = {"spp", 0, 1},
     [OPT_THREADS] = {"threads", 0, 1},    [OPT_SEED] = {"seed", 0, 1},
@@ -292,11 +221,12 @@ static const struct arg_spec render_options[OPT_END + 1] = {
     [OPT_QUIET] = {"quiet", 0, 0},        [OPT_HELP] = {"help", 0, 0},
     [OPT_VERSION] = {"version", 0, 0},    [OPT_AOV] = {"aov", 0, 1},
     [OPT_CROP] = {"crop", 0, 1},          [OPT_TIME] = {"time", 0, 1},
-    [OPT_TARGET_ERROR] = {"target-error", 0, 1}, [OPT_END] = {NULL, 0, 0}};
+    [OPT_TARGET_ERROR] = {"target-error", 0, 1}, [OPT_ADAPTIVE] = {"adaptive", 0, 0},
+    [OPT_SAMPLER] = {"sampler", 0, 1},    [OPT_END] = {NULL, 0, 0}};
 
 struct render_args {
-    const char *scene, *output, *stats, *integrator, *aovs;
-    int spp, threads, quiet, all_features;
+    const char *scene, *output, *stats, *integrator, *aovs, *sampler;
+    int spp, threads, quiet, all_features, adaptive;
     int crop[4];                      /* x0, y0, x1, y1; all 0 = none */
     double time_budget, target_error; /* 0 = none */
     uint64_t seed;
@@ -365,6 +295,18 @@ static int parse_render_args(int argc, char **argv, struct render_args *a)
         case OPT_TARGET_ERROR:
             if (!mc_args_real("target-error", v, 1, 0, &a->target_error))
                 return EXIT_USAGE;
+            break;
+        case OPT_ADAPTIVE:
+            a->adaptive = 1;
+            break;
+        case OPT_SAMPLER:
+            if (strcmp(v, "random") != 0 && strcmp(v, "stratified") != 0
+                && strcmp(v, "sobol") != 0) {
+                fprintf(stderr, "mcrt: --sampler: expected random, stratified or sobol, got "
+                                "'%s'\n", v);
+                return EXIT_USAGE;
+            }
+            a->sampler = v;
             break;
         case OPT_QUIET:
             a->quiet = 1;
@@ -438,7 +380,7 @@ static int render(const struct render_args *a, const char *output)
     struct progress prog;
     mcrt_status status;
     int code = EXIT_FAIL;
-    char passes[48] = "";
+    char passes[96] = "";
 
     if (!scene) {
         fprintf(stderr, "mcrt: out of memory\n");
@@ -463,6 +405,8 @@ static int render(const struct render_args *a, const char *output)
     o.crop_y1 = a->crop[3];
     o.time_budget = a->time_budget;
     o.target_error = a->target_error;
+    o.adaptive = a->adaptive;
+    o.sampler = a->sampler;
     if (!a->quiet && isatty(STDERR_FILENO)) {
         prog.start = now();
         prog.last_draw = 0.0;
@@ -496,11 +440,18 @@ static int render(const struct render_args *a, const char *output)
         goto done;
     }
     mcrt_render_stats(r, &st);
-    if (a->stats && !write_stats(a->stats, a->scene, output, a->seed, &st))
+    if (a->stats && mcrt_render_save_stats(r, a->stats, a->scene, output) != MCRT_OK) {
+        fprintf(stderr, "mcrt: %s\n", mcrt_render_error(r));
         goto done;
-    /* Progressive renders say how many passes ran. */
-    if (a->time_budget > 0.0 || a->target_error > 0.0)
-        snprintf(passes, sizeof passes, ", %d pass%s", st.passes, st.passes == 1 ? "" : "es");
+    }
+    /* Progressive renders say how many passes ran; adaptive ones how far the pixels' samples
+     * spread (spp is then their mean). */
+    if (a->time_budget > 0.0 || a->target_error > 0.0 || st.adaptive)
+        snprintf(passes, sizeof passes, ", %d pass%s%s", st.passes, st.passes == 1 ? "" : "es",
+                 st.adaptive ? ", adaptive" : "");
+    if (st.adaptive)
+        snprintf(passes + strlen(passes), sizeof passes - strlen(passes), " (%d to %d spp)",
+                 st.spp_min, st.spp_max);
     if (!a->quiet)
         fprintf(stderr,
                 "%s: %dx%d, %d spp, %d thread%s, %.*f s, %.2f Mrays/s, %" PRIu64 " NaN samples, "

@@ -1,12 +1,14 @@
-/* file.c: whole-file reads (see file.h). */
+/* file.c: whole-file reads and all-or-nothing writes (see file.h). */
 #include "core/file.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 /* "WHERE: what 'PATH': reason" or "PATH: what: reason". */
 static mcrt_status fail(mc_diag *d, mcrt_status st, const char *where, const char *path,
@@ -73,4 +75,60 @@ mcrt_status mc_read_file(const char *path, size_t max_bytes, const char *where, 
     *data = buf;
     *len = n;
     return MCRT_OK;
+}
+
+static mcrt_status cannot_write(mc_diag *d, mcrt_status st, const char *path, const char *reason)
+{
+    return mc_fail(d, st, "cannot write '%s': %s", path, reason);
+}
+
+mcrt_status mc_output_open(struct mc_output *o, const char *path, mc_diag *d)
+{
+    size_t len = strlen(path) + 48;
+    struct stat sb;
+    int attempt, fd = -1, e;
+    o->path = path;
+    o->tmp = NULL;
+    /* lstat, not stat: /dev/stdout is a symbolic link, and renaming over it would replace the
+     * link itself, even when it leads to a regular file (output redirected to a file). */
+    if (lstat(path, &sb) == 0 && !S_ISREG(sb.st_mode)) {
+        o->f = fopen(path, "wb");
+        return o->f ? MCRT_OK : cannot_write(d, MCRT_ERR_IO, path, strerror(errno));
+    }
+    if (!(o->tmp = malloc(len)))
+        return cannot_write(d, MCRT_ERR_NOMEM, path, "out of memory");
+    for (attempt = 0; attempt < 100 && fd < 0; attempt++) {
+        snprintf(o->tmp, len, "%s.tmp-%ld-%d", path, (long)getpid(), attempt);
+        fd = open(o->tmp, O_WRONLY | O_CREAT | O_EXCL, 0666);
+        if (fd < 0 && errno != EEXIST)
+            break;
+    }
+    o->f = fd >= 0 ? fdopen(fd, "wb") : NULL;
+    if (o->f)
+        return MCRT_OK;
+    e = errno;
+    if (fd >= 0) {
+        close(fd);
+        unlink(o->tmp);
+    }
+    free(o->tmp);
+    o->tmp = NULL;
+    return cannot_write(d, e == ENOMEM ? MCRT_ERR_NOMEM : MCRT_ERR_IO, path, strerror(e));
+}
+
+mcrt_status mc_output_close(struct mc_output *o, mcrt_status st, mc_diag *d)
+{
+    int failed = ferror(o->f);
+    if (fclose(o->f) != 0 || failed) {
+        if (st == MCRT_OK)
+            st = cannot_write(d, MCRT_ERR_IO, o->path, failed ? "write error" : strerror(errno));
+    } else if (st == MCRT_OK && o->tmp && rename(o->tmp, o->path) != 0) {
+        st = cannot_write(d, MCRT_ERR_IO, o->path, strerror(errno));
+    }
+    if (st != MCRT_OK && o->tmp)
+        unlink(o->tmp);
+    free(o->tmp);
+    o->tmp = NULL;
+    o->f = NULL;
+    return st;
 }

@@ -148,6 +148,16 @@ static const float *channel_source(const char *channel, const struct image_layer
 
 /* Encode the layers chunk by chunk (16 scanlines per ZIP chunk). The library's pack step gathers
  * each channel from our interleaved rows through the pixel and line strides. */
+/* Our side of a channel in an encode or decode pipeline: one component of float RGB triples, a
+ * row of w pixels after another. */
+static void set_rgb_layout(exr_coding_channel_info_t *ch, size_t w)
+{
+    ch->user_pixel_stride = 3 * (int32_t)sizeof(float);
+    ch->user_line_stride = 3 * (int32_t)(sizeof(float) * w);
+    ch->user_bytes_per_element = (int16_t)sizeof(float);
+    ch->user_data_type = EXR_PIXEL_FLOAT;
+}
+
 static exr_result_t encode_pixels(exr_context_t ctx, const struct image_layer *layers, int n,
                                   int w, int h)
 {
@@ -173,10 +183,7 @@ static exr_result_t encode_pixels(exr_context_t ctx, const struct image_layer *l
             const float *rgb = channel_source(ch->channel_name, layers, n, &k);
             ch->encode_from_ptr =
                 (const uint8_t *)(rgb + (size_t)cinfo.start_y * (size_t)w * 3 + (size_t)k);
-            ch->user_pixel_stride = 3 * (int32_t)sizeof(float);
-            ch->user_line_stride = 3 * (int32_t)sizeof(float) * w;
-            ch->user_bytes_per_element = (int16_t)sizeof(float);
-            ch->user_data_type = EXR_PIXEL_FLOAT;
+            set_rgb_layout(ch, (size_t)w);
         }
         if (!started)
             rv = exr_encoding_choose_default_routines(ctx, 0, &enc);
@@ -320,10 +327,7 @@ static exr_result_t decode_pixels(exr_context_t ctx, const exr_attr_box2i_t *dw,
             exr_coding_channel_info_t *ch = &dec.channels[idx[k]];
             ch->decode_to_ptr =
                 (uint8_t *)(im->rgb + (size_t)(cinfo.start_y - dw->min.y) * w * 3 + (size_t)k);
-            ch->user_pixel_stride = 3 * (int32_t)sizeof(float);
-            ch->user_line_stride = 3 * (int32_t)(sizeof(float) * w);
-            ch->user_bytes_per_element = (int16_t)sizeof(float);
-            ch->user_data_type = EXR_PIXEL_FLOAT;
+            set_rgb_layout(ch, w);
         }
         if (!started)
             rv = exr_decoding_choose_default_routines(ctx, 0, &dec);

@@ -1,13 +1,13 @@
-/* image.c: image files by suffix: the format table, and crash-safe writing (a temporary file in
- * the same folder, renamed over the target only when complete: rename(2) is atomic). */
+/* image.c: image files by suffix: the format table, reading, and writing all-or-nothing (through
+ * core/file.h's mc_output: an existing image survives a failed write). */
 #include "io/formats.h"
 
 #include <errno.h>
-#include <fcntl.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
-#include <unistd.h>
+
+#include "core/file.h"
 
 static const struct image_format *const formats[] = {&mc_png_format, &mc_exr_format,
                                                       &mc_pfm_format};
@@ -91,39 +91,6 @@ mcrt_status mc_image_alloc(struct image *im, long w, long h, mc_diag *d)
     return MCRT_OK;
 }
 
-/* Create a new file next to path, named path.tmp-PID-N. O_EXCL with mode 0666 (not mkstemp's
- * 0600) so that the finished file gets the permissions the umask gives any new file. */
-static FILE *create_temp(const char *path, char **tmp_out)
-{
-    size_t len = strlen(path) + 48;
-    char *tmp = malloc(len);
-    int attempt, fd = -1;
-    FILE *f;
-    if (!tmp)
-        return NULL;
-    for (attempt = 0; attempt < 100 && fd < 0; attempt++) {
-        snprintf(tmp, len, "%s.tmp-%ld-%d", path, (long)getpid(), attempt);
-        fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL, 0666);
-        if (fd < 0 && errno != EEXIST)
-            break;
-    }
-    if (fd < 0) {
-        free(tmp);
-        return NULL;
-    }
-    f = fdopen(fd, "wb");
-    if (!f) {
-        int saved = errno;
-        close(fd);
-        unlink(tmp);
-        free(tmp);
-        errno = saved;
-        return NULL;
-    }
-    *tmp_out = tmp;
-    return f;
-}
-
 mcrt_status mc_image_write(const char *path, const float *rgb, int w, int h, mc_diag *d)
 {
     struct image_layer beauty;
@@ -136,8 +103,7 @@ mcrt_status mc_image_write_layers(const char *path, const struct image_layer *la
                                   int h, mc_diag *d)
 {
     const struct image_format *fmt;
-    char *tmp = NULL;
-    FILE *f;
+    struct mc_output out;
     mcrt_status st;
     int i, layered = n > 1 || (n == 1 && layers[0].name && layers[0].name[0]);
 
@@ -154,25 +120,13 @@ mcrt_status mc_image_write_layers(const char *path, const struct image_layer *la
     if (w <= 0 || h <= 0 || w > MC_IMAGE_MAX_PIXELS / h)
         return mc_fail(d, MCRT_ERR_INVALID, "cannot write '%s': image size %dx%d is out of range",
                        path, w, h);
-    f = create_temp(path, &tmp);
-    if (!f)
-        return mc_fail(d, errno == ENOMEM ? MCRT_ERR_NOMEM : MCRT_ERR_IO, "cannot write '%s': %s",
-                       path, strerror(errno));
-
-    st = layered ? mc_exr_write_layers(f, layers, n, w, h, d)
-                 : fmt->write(f, layers[0].rgb, w, h, d);
+    if ((st = mc_output_open(&out, path, d)) != MCRT_OK)
+        return st;
+    st = layered ? mc_exr_write_layers(out.f, layers, n, w, h, d)
+                 : fmt->write(out.f, layers[0].rgb, w, h, d);
     if (st != MCRT_OK)
         st = explain(d, st, "write", path);
-    /* fclose flushes, so it is where a full disk shows up. */
-    if (fclose(f) != 0 && st == MCRT_OK)
-        st = mc_fail(d, MCRT_ERR_IO, "cannot write '%s': %s", path, strerror(errno));
-    if (st == MCRT_OK && rename(tmp, path) != 0)
-        st = mc_fail(d, MCRT_ERR_IO, "cannot write '%s': rename from '%s' failed: %s", path, tmp,
-                     strerror(errno));
-    if (st != MCRT_OK)
-        unlink(tmp);
-    free(tmp);
-    return st;
+    return mc_output_close(&out, st, d);
 }
 
 mcrt_status mc_image_read(const char *path, struct image *im, mc_diag *d)

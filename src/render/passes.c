@@ -1,11 +1,13 @@
 /* passes.c: progressive passes over mc_render (see passes.h). A pass renders into a scratch film
  * and is merged (Chan, Golub and LeVeque 1979) only when complete, so an interrupted render holds
- * whole passes: every pixel has the same number of samples. */
+ * whole passes: every pixel has the samples of each pass it was given (the same number in each
+ * pixel unless adaptive). */
 #include "render/passes.h"
 
 #include <time.h>
 
 #include "core/rng.h"
+#include "render/adaptive.h"
 
 static double now_seconds(void)
 {
@@ -33,21 +35,41 @@ mcrt_status mc_render_passes(const struct scene *s, const struct render_settings
     struct render_settings pass = *rs;
     struct render_result res;
     struct film scratch;
+    struct adaptive ad = {0, NULL, NULL};
+    uint64_t pixels = (uint64_t)f->width * (uint64_t)f->height, budget = UINT64_MAX;
+    int limited = ps->time_budget > 0.0 || ps->target_error > 0.0;
     double t0 = now_seconds(), elapsed;
     mcrt_status st;
     out->passes = 0;
-    out->rays = out->nan_count = 0;
-    if (!(ps->time_budget > 0.0) && !(ps->target_error > 0.0)) {
+    out->samples = out->rays = out->nan_count = 0;
+    if (!limited && !ps->adaptive) {
         st = mc_render(s, rs, f, &res, d);
         add_counts(out, &res);
         out->passes = st == MCRT_OK;
+        out->samples = (uint64_t)out->passes * (uint64_t)rs->spp * pixels;
         out->seconds = res.seconds;
         return st;
     }
-    if (mc_film_init(&scratch, f->width, f->height) != 0)
+    /* Adaptive without a limit: rs->spp is the mean of the whole render, spent in passes. */
+    if (!limited) {
+        budget = (uint64_t)rs->spp * pixels;
+        pass.spp = mc_adaptive_pass_spp(rs->spp);
+    }
+    if (mc_film_init(&scratch, f->width, f->height) != 0
+        || (ps->adaptive && mc_adaptive_init(&ad, (size_t)pixels) != 0)) {
+        mc_film_free(&scratch);
         return mc_fail(d, MCRT_ERR_NOMEM, "out of memory for a %dx%d film", f->width, f->height);
+    }
     for (;;) {
+        uint64_t given = (uint64_t)pass.spp * pixels;
+        if (given > budget - out->samples)
+            given = budget - out->samples;
         pass.seed = mc_pass_seed(rs->seed, out->passes);
+        pass.pixel_spp = NULL;
+        if (ps->adaptive && out->passes > 0) {
+            given = mc_adaptive_allocate(&ad, f, given);
+            pass.pixel_spp = ad.counts;
+        }
         mc_film_clear(&scratch);
         st = mc_render(s, &pass, &scratch, &res, d);
         add_counts(out, &res);
@@ -55,8 +77,9 @@ mcrt_status mc_render_passes(const struct scene *s, const struct render_settings
             break; /* cancelled: the partial pass is dropped */
         mc_film_merge(f, &scratch);
         out->passes++;
+        out->samples += given;
         elapsed = now_seconds() - t0;
-        if (out->passes >= ps->max_passes)
+        if (limited ? out->passes >= ps->max_passes : out->samples >= budget)
             break;
         if (ps->target_error > 0.0 && mc_film_est_relmse(f) <= ps->target_error)
             break;
@@ -64,6 +87,7 @@ mcrt_status mc_render_passes(const struct scene *s, const struct render_settings
             break;
     }
     mc_film_free(&scratch);
+    mc_adaptive_free(&ad);
     out->seconds = now_seconds() - t0;
     return st;
 }

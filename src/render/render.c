@@ -49,9 +49,9 @@ static inline void render_pixel(struct job *j, struct worker *w, int x, int y, u
     struct film_pixel *px = &j->film->pixels[(size_t)(y - j->y0) * (size_t)j->film->width
                                              + (size_t)(x - j->x0)];
     struct sampler smp;
-    int i;
-    mc_sampler_pixel(&smp, rs->sampler, rs->seed, x, y, rs->spp);
-    for (i = 0; i < rs->spp; i++) {
+    int i, spp = rs->pixel_spp ? rs->pixel_spp[px - j->film->pixels] : rs->spp;
+    mc_sampler_pixel(&smp, rs->sampler, rs->seed, x, y, spp);
+    for (i = 0; i < spp; i++) {
         vec2 off;
         struct ray r;
         vec3 L;

@@ -21,6 +21,9 @@ struct render_settings {
     int crop_x0, crop_y0;
     struct aov_film *aov;             /* film-sized first-hit data to record, or NULL */
     enum sampler_kind sampler;        /* the film's, unless the options override it */
+    /* Film-sized samples of each pixel (render/adaptive.h), in place of spp everywhere; NULL:
+     * spp each. A pixel's n samples are a complete n-sample set of the sampler. */
+    const int *pixel_spp;
 };
 
 struct render_result {
