@@ -18,16 +18,16 @@ camera {
   confidence 0.9999
   variance 0
 }
-// material 'floor'
-#declare T1 = texture { pigment { rgb <0.5, 0.5, 0.5> } finish { ambient 0 diffuse 1 brilliance 1 specular 0 phong 0 } }
-// material 'mid'
-#declare T3 = texture { pigment { rgb <0.9, 0.9, 0.9> } finish { ambient 0 diffuse 1 brilliance 1 specular 0 phong 0 } }
 // material 'near'
 #declare T2 = texture { pigment { rgb <0.8, 0.2, 0.1> } finish { ambient 0 diffuse 1 brilliance 1 specular 0 phong 0 } }
+// material 'mid'
+#declare T3 = texture { pigment { rgb <0.9, 0.9, 0.9> } finish { ambient 0 diffuse 1 brilliance 1 specular 0 phong 0 } }
 // material 'far'
 #declare T4 = texture { pigment { rgb <0.1, 0.3, 0.8> } finish { ambient 0 diffuse 1 brilliance 1 specular 0 phong 0 } }
+// material 'floor'
+#declare T1 = texture { pigment { rgb <0.5, 0.5, 0.5> } finish { ambient 0 diffuse 1 brilliance 1 specular 0 phong 0 } }
 light_source { <2, 5, 5> color rgb <6366198, 6366198, 6366198> fade_distance 0.001 fade_power 2 }
-polygon { 5, <-6, 0, 8>, <6, 0, 8>, <6, 0, -8>, <-6, 0, -8>, <-6, 0, 8> texture { T1 } }
-sphere { <0, 0.5, 0>, 0.5 texture { T3 } }
 sphere { <-0.9, 0.4, 2.5>, 0.4 texture { T2 } }
+sphere { <0, 0.5, 0>, 0.5 texture { T3 } }
 sphere { <1.2, 0.6, -4>, 0.6 texture { T4 } }
+polygon { 5, <-6, 0, 8>, <6, 0, 8>, <6, 0, -8>, <-6, 0, -8>, <-6, 0, 8> texture { T1 } }

@@ -6,8 +6,8 @@ global_settings {
   max_trace_level 64
   adc_bailout 0
   radiosity {
-    count 200 nearest_count 10 error_bound 0.5 recursion_limit 20
-    pretrace_start 0.08 pretrace_end 0.01 low_error_factor 0.5 gray_threshold 0
+    count 800 nearest_count 20 error_bound 0.1 recursion_limit 20
+    pretrace_start 0.08 pretrace_end 0.005 low_error_factor 0.5 gray_threshold 0
     brightness 1 minimum_reuse 0.015 adc_bailout 0.0001 always_sample off normal off media off
   }
 }
@@ -21,9 +21,9 @@ camera {
 // material 'grey'
 #declare T1 = texture { pigment { rgb <0.5, 0.5, 0.5> } finish { ambient 0 diffuse 1 brilliance 1 specular 0 phong 0 } }
 light_source { <0.3, 0.5, 0.2> color rgb <318309.9, 318309.9, 318309.9> fade_distance 0.001 fade_power 2 }
-polygon { 5, <-1, -1, 1>, <1, -1, 1>, <1, -1, -1>, <-1, -1, -1>, <-1, -1, 1> texture { T1 } }
-polygon { 5, <-1, 1, -1>, <1, 1, -1>, <1, 1, 1>, <-1, 1, 1>, <-1, 1, -1> texture { T1 } }
-polygon { 5, <-1, -1, -1>, <1, -1, -1>, <1, 1, -1>, <-1, 1, -1>, <-1, -1, -1> texture { T1 } }
-polygon { 5, <-1, -1, 1>, <1, -1, 1>, <1, 1, 1>, <-1, 1, 1>, <-1, -1, 1> texture { T1 } }
-polygon { 5, <-1, -1, 1>, <-1, -1, -1>, <-1, 1, -1>, <-1, 1, 1>, <-1, -1, 1> texture { T1 } }
 polygon { 5, <1, -1, -1>, <1, -1, 1>, <1, 1, 1>, <1, 1, -1>, <1, -1, -1> texture { T1 } }
+polygon { 5, <-1, 1, -1>, <1, 1, -1>, <1, 1, 1>, <-1, 1, 1>, <-1, 1, -1> texture { T1 } }
+polygon { 5, <-1, -1, 1>, <-1, -1, -1>, <-1, 1, -1>, <-1, 1, 1>, <-1, -1, 1> texture { T1 } }
+polygon { 5, <-1, -1, 1>, <1, -1, 1>, <1, -1, -1>, <-1, -1, -1>, <-1, -1, 1> texture { T1 } }
+polygon { 5, <-1, -1, 1>, <1, -1, 1>, <1, 1, 1>, <-1, 1, 1>, <-1, -1, 1> texture { T1 } }
+polygon { 5, <-1, -1, -1>, <1, -1, -1>, <1, 1, -1>, <-1, 1, -1>, <-1, -1, -1> texture { T1 } }
