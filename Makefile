@@ -53,7 +53,8 @@ CLI_SRC  := $(wildcard src/cli/*.c)
 LIB_OBJ  := $(LIB_SRC:%.c=$(O)/obj/%.o)
 CLI_OBJ  := $(CLI_SRC:%.c=$(O)/obj/%.o)
 UNIT_SRC := $(wildcard tests/unit/test_*.c)
-UNIT_BIN := $(UNIT_SRC:tests/unit/%.c=$(O)/tests/%) $(O)/tests/test_bvh_portable
+BVH_VARIANTS := portable sse # test_bvh_VARIANT: see the rules below
+UNIT_BIN := $(UNIT_SRC:tests/unit/%.c=$(O)/tests/%) $(BVH_VARIANTS:%=$(O)/tests/test_bvh_%)
 TOOL_SRC := $(wildcard tests/tools/*.c)
 TOOL_BIN := $(TOOL_SRC:tests/tools/%.c=$(O)/tests/%)
 
@@ -79,17 +80,20 @@ $(O)/tests/%: tests/unit/%.c tests/t.h tests/prim_util.h $(O)/libmcrt.a
 	@$(if $(Q),echo "  CC      $<")
 	$(Q)$(CC) $(CFLAGS) -Itests -o $@ $< $(O)/libmcrt.a $(LDLIBS)
 
-# The BVH tests again with the portable C99 node test (src/geom/bvh.c without SIMD) linked ahead
-# of the library, so that the path the SIMD build does not use is tested too.
-$(O)/obj/bvh_portable.o: src/geom/bvh.c
+# The BVH tests again with the node tests the SIMD build does not use on this machine, each from
+# src/geom/bvh.c linked ahead of the library: the portable C99 one, and SSE (which AVX machines
+# pass over at run time).
+BVH_VARIANT_FLAGS_portable = -DMCRT_BVH_PORTABLE
+BVH_VARIANT_FLAGS_sse = -DMCRT_BVH_NO_AVX
+$(BVH_VARIANTS:%=$(O)/obj/bvh_%.o): $(O)/obj/bvh_%.o: src/geom/bvh.c
 	@mkdir -p $(@D)
-	@$(if $(Q),echo "  CC      $< (portable)")
-	$(Q)$(CC) $(CFLAGS) -DMCRT_BVH_PORTABLE -c $< -o $@
+	@$(if $(Q),echo "  CC      $< ($*)")
+	$(Q)$(CC) $(CFLAGS) $(BVH_VARIANT_FLAGS_$*) -c $< -o $@
 
-$(O)/tests/test_bvh_portable: tests/unit/test_bvh.c tests/t.h tests/prim_util.h $(O)/obj/bvh_portable.o $(O)/libmcrt.a
+$(BVH_VARIANTS:%=$(O)/tests/test_bvh_%): $(O)/tests/test_bvh_%: tests/unit/test_bvh.c tests/t.h tests/prim_util.h $(O)/obj/bvh_%.o $(O)/libmcrt.a
 	@mkdir -p $(@D)
-	@$(if $(Q),echo "  CC      $< (portable BVH)")
-	$(Q)$(CC) $(CFLAGS) -Itests -o $@ $< $(O)/obj/bvh_portable.o $(O)/libmcrt.a $(LDLIBS)
+	@$(if $(Q),echo "  CC      $< ($* BVH)")
+	$(Q)$(CC) $(CFLAGS) -Itests -o $@ $< $(O)/obj/bvh_$*.o $(O)/libmcrt.a $(LDLIBS)
 
 $(O)/tests/%: tests/tools/%.c $(O)/libmcrt.a
 	@mkdir -p $(@D)
@@ -203,4 +207,4 @@ clean:
 	rm -rf $(O) build-san build-tsan build-fuzz
 
 -include $(LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d)
--include $(O)/obj/bvh_portable.d
+-include $(BVH_VARIANTS:%=$(O)/obj/bvh_%.d)

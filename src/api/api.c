@@ -10,7 +10,6 @@
 #include "api/stats_json.h"
 #include "core/file.h"
 #include "export/pov.h"
-#include "geom/bvh_node.h"
 #include "integrator/integrator.h"
 #include "io/image.h"
 #include "render/adaptive.h"
@@ -212,7 +211,7 @@ const char *mcrt_scene_info(mcrt_scene *s)
     sc = &s->s;
     f = mc_scene_features(sc);
     dims = mc_feature_dims(f, &sc->integrator);
-    bvh_bytes = (sc->bvh.node_count + sc->motion_bvh.node_count) * sizeof(struct bvh_node)
+    bvh_bytes = mc_bvh_bytes(&sc->bvh) + mc_bvh_bytes(&sc->motion_bvh)
                 + sc->prim_count * sizeof *sc->prims + sc->normal_count * sizeof *sc->normals;
     w = snprintf(s->info, sizeof s->info, "features:");
     n = w > 0 ? (size_t)w : 0;

@@ -34,8 +34,13 @@ static inline vec3 v3_normalize(vec3 a)
     float l = v3_length(a);
     return l > 0.0f ? v3_scale(a, 1.0f / l) : a;
 }
-static inline vec3 v3_min(vec3 a, vec3 b) { return v3(fminf(a.x, b.x), fminf(a.y, b.y), fminf(a.z, b.z)); }
-static inline vec3 v3_max(vec3 a, vec3 b) { return v3(fmaxf(a.x, b.x), fmaxf(a.y, b.y), fmaxf(a.z, b.z)); }
+/* Componentwise min and max as comparisons, which compile to single minss/maxss instructions
+ * (fminf and fmaxf are library calls: C defines them for NaN). A NaN in b is ignored, as fminf
+ * would, so a box grown by v3_min(box, p) is never poisoned by a NaN point. */
+static inline float f_min(float a, float b) { return b < a ? b : a; }
+static inline float f_max(float a, float b) { return b > a ? b : a; }
+static inline vec3 v3_min(vec3 a, vec3 b) { return v3(f_min(a.x, b.x), f_min(a.y, b.y), f_min(a.z, b.z)); }
+static inline vec3 v3_max(vec3 a, vec3 b) { return v3(f_max(a.x, b.x), f_max(a.y, b.y), f_max(a.z, b.z)); }
 static inline vec3 v3_abs(vec3 a) { return v3(fabsf(a.x), fabsf(a.y), fabsf(a.z)); }
 static inline float v3_get(vec3 a, int axis) { return axis == 0 ? a.x : axis == 1 ? a.y : a.z; }
 static inline float v3_max_comp(vec3 a) { return fmaxf(a.x, fmaxf(a.y, a.z)); }

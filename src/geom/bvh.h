@@ -11,10 +11,13 @@
 
 struct bvh_node;
 struct motion;
+struct tri4;
 
 struct bvh {
     struct bvh_node *nodes;
     size_t node_count;
+    struct tri4 *tri4;  /* the primitives four at a time, for the 4-wide triangle test (tri4.h) */
+    size_t tri4_count;
     struct aabb bounds; /* of the whole scene */
 };
 
@@ -31,6 +34,8 @@ mcrt_status mc_bvh_build_bounds(struct bvh *b, struct prim *prims, const struct 
 mcrt_status mc_bvh_build_threads(struct bvh *b, struct prim *prims, const struct aabb *bounds,
                                  size_t n, int threads, mc_diag *d);
 void mc_bvh_free(struct bvh *b);
+/* Bytes the BVH holds beyond the primitives: its nodes and its leaf data (the triangle blocks). */
+size_t mc_bvh_bytes(const struct bvh *b);
 
 /* Nearest hit in (0, r->tmax). Returns 1 and fills h (h->prim included) on a hit. */
 int mc_bvh_intersect(const struct bvh *b, const struct prim *prims, const struct ray *r,

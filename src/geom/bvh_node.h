@@ -7,7 +7,8 @@
 
 /* 8 rather than 4: measured against Embree on the anchor's ray sets, 8-wide nodes (tested as two
  * SSE halves) traced 15 to 30% faster than 4-wide ones, from the shallower tree (depth 7 against
- * 9 to 14). A multiple of 4, for the SSE node test. */
+ * 9 to 14); one 8-wide AVX test instead of the two halves gained another 5 to 15% where the
+ * processor has AVX (src/geom/bvh.c). A multiple of 4, for the SSE node test. */
 #define BVH_WIDTH 8
 
 /* No node is deeper than this (the build guarantees it, see SAH_DEPTH in bvh_build.c): a traversal
@@ -25,7 +26,7 @@
  * direction, without branching. */
 struct bvh_node {
     float b[6][BVH_WIDTH];     /* b[plane][child]: lower x, y, z, then upper x, y, z */
-    uint32_t child[BVH_WIDTH]; /* inner child: its node index; leaf: its first primitive */
+    uint32_t child[BVH_WIDTH]; /* inner child: its node index; leaf: its first block (tri4.h) */
     uint8_t count[BVH_WIDTH];  /* leaf: number of primitives (>= 1); inner child or unused: 0 */
     uint8_t pad[24];           /* to 256 bytes, so that nodes stay aligned to cache lines */
 };

@@ -40,12 +40,11 @@ void mc_ray_prep(struct ray_prep *q, const struct ray *r)
     q->sz = 1.0f / d.z;
 }
 
-/* Whether the triangle's vertices are collinear. The edge functions of a zero-area triangle are
- * zero only in exact arithmetic: rounded, they can pass the sign test when the ray meets the
- * degenerate segment. Its cross product is therefore checked in double, where the float vertex
- * differences are exact and the products carry 29 more bits than float. This runs only for
- * accepted hits, not for every test. */
-static int degenerate(const struct prim *p)
+/* The edge functions of a zero-area triangle are zero only in exact arithmetic: rounded, they can
+ * pass the sign test when the ray meets the degenerate segment. Its cross product is therefore
+ * checked in double, where the float vertex differences are exact and the products carry 29 more
+ * bits than float. This runs only for accepted hits, not for every test. */
+int mc_prim_degenerate(const struct prim *p)
 {
     double ax = (double)p->p[1].x - p->p[0].x, ay = (double)p->p[1].y - p->p[0].y,
            az = (double)p->p[1].z - p->p[0].z, bx = (double)p->p[2].x - p->p[0].x,
@@ -92,7 +91,7 @@ static int intersect_triangle(const struct prim *p, const struct ray_prep *q, st
     if (((det < 0.0f) & (ts >= 0.0f)) | ((det > 0.0f) & (ts <= 0.0f)))
         return 0;
     t = ts / det;
-    if (!accept(t, h) || degenerate(p))
+    if (!accept(t, h) || mc_prim_degenerate(p))
         return 0;
     h->t = t;
     h->u = e1 / det;

@@ -62,6 +62,9 @@ struct ray_prep {
 void mc_ray_prep(struct ray_prep *q, const struct ray *r);
 /* mc_prim_intersect with the constants precomputed; the results are bitwise the same. */
 int mc_prim_intersect_prep(const struct prim *p, const struct ray_prep *q, struct hit *h);
+/* Whether triangle p's vertices are collinear: the cross product of its edges, in double, is
+ * exactly zero. mc_prim_intersect never reports a hit on such a triangle. */
+int mc_prim_degenerate(const struct prim *p);
 
 struct aabb mc_prim_bounds(const struct prim *p);
 float mc_prim_area(const struct prim *p);

@@ -1,13 +1,15 @@
 /* test_bvh.c: the BVH against brute force (nearest hit and occlusion), its structural invariants,
- * and degenerate inputs (empty scene, one leaf, coinciding centroids, coplanar triangles, NaN
- * rays). Built twice: with the library's node test (SIMD where available) as test_bvh, and with
- * the portable C99 node test as test_bvh_portable. */
+ * and degenerate inputs (empty scene, one leaf, coinciding centroids, coplanar triangles, rays
+ * exactly through edges and vertices, degenerate triangles, NaN rays). Built twice: with the
+ * library's node and triangle tests (SIMD where available) as test_bvh, and with the portable C99
+ * ones as test_bvh_portable. */
 #include <stdlib.h>
 #include <string.h>
 
 #include "core/rng.h"
 #include "geom/bvh.h"
 #include "geom/bvh_node.h"
+#include "geom/tri4.h"
 #include "prim_util.h"
 #include "t.h"
 
@@ -104,15 +106,51 @@ static int box_outside(const float *lo, const float *hi, const struct bvh_node *
     return 0;
 }
 
+/* The leaf layout (tri4.h) of a leaf of count primitives from block first: its blocks exist and no
+ * other leaf has them (blocks_used counts), its lanes name consecutive primitives from its first
+ * block's lane 0 in order, each marked in covered, with bounds inside slot i of node nd; the
+ * padding lanes name none and have NaN vertices. Returns the number of violations. */
+static int check_leaf(const struct bvh *b, const struct prim *prims, size_t n, uint32_t first,
+                      uint32_t count, const struct bvh_node *nd, int i, unsigned char *covered,
+                      unsigned char *blocks_used)
+{
+    uint32_t nb = mc_tri4_blocks(count), j, p0;
+    int bad = 0;
+    if ((size_t)first + nb > b->tri4_count)
+        return 1;
+    p0 = b->tri4[first].prim[0];
+    for (j = 0; j < 4 * nb; j++) {
+        const struct tri4 *k = &b->tri4[first + j / 4];
+        uint32_t p = k->prim[j % 4];
+        if (j % 4 == 0)
+            bad += blocks_used[first + j / 4]++ != 0;
+        if (j >= count) {
+            bad += p != UINT32_MAX || k->v[0][0][j % 4] == k->v[0][0][j % 4];
+            continue;
+        }
+        if (p != p0 + j || p >= n) {
+            bad++;
+            continue;
+        }
+        {
+            struct aabb pb = mc_prim_bounds(&prims[p]);
+            const float lo[3] = {pb.lo.x, pb.lo.y, pb.lo.z}, hi[3] = {pb.hi.x, pb.hi.y, pb.hi.z};
+            bad += covered[p]++ != 0;
+            bad += box_outside(lo, hi, nd, i);
+        }
+    }
+    return bad;
+}
+
 /* Walk the wide tree and check: every child box inside its parent's slot box, every primitive's
- * bounds inside its leaf's box, the leaves cover [0, n) exactly once, unused slots (empty boxes)
- * only after the used ones, child nodes after their parent (pre-order) and each reached once, and
- * the depth bound the traversal stack relies on. Returns the number of violations; *depth gets the
- * maximum. */
+ * bounds inside its leaf's box, the leaves cover [0, n) exactly once and the blocks exactly once
+ * (check_leaf), unused slots (empty boxes) only after the used ones, child nodes after their
+ * parent (pre-order) and each reached once, and the depth bound the traversal stack relies on.
+ * Returns the number of violations; *depth gets the maximum. */
 static int check_tree(const struct bvh *b, const struct prim *prims, size_t n, int *depth)
 {
     struct { uint32_t node; int depth; } stack[256];
-    unsigned char *covered, *reached;
+    unsigned char *covered, *reached, *blocks_used;
     int sp = 0, bad = 0;
     size_t k;
     *depth = 0;
@@ -122,6 +160,7 @@ static int check_tree(const struct bvh *b, const struct prim *prims, size_t n, i
         return 1;
     covered = calloc(n, 1);
     reached = calloc(b->node_count, 1);
+    blocks_used = calloc(b->tri4_count + 1, 1);
     stack[sp].node = 0;
     stack[sp].depth = 0;
     sp++;
@@ -146,17 +185,8 @@ static int check_tree(const struct bvh *b, const struct prim *prims, size_t n, i
             bad += empty_seen; /* a used slot after an unused one */
             used++;
             if (nd->count[i] > 0) {
-                uint32_t first = nd->child[i];
-                for (k = first; k < first + nd->count[i]; k++) {
-                    struct aabb pb = mc_prim_bounds(&prims[k < n ? k : 0]);
-                    const float lo[3] = {pb.lo.x, pb.lo.y, pb.lo.z}, hi[3] = {pb.hi.x, pb.hi.y, pb.hi.z};
-                    if (k >= n) {
-                        bad++;
-                        continue;
-                    }
-                    bad += covered[k]++ != 0;
-                    bad += box_outside(lo, hi, nd, i);
-                }
+                bad += check_leaf(b, prims, n, nd->child[i], nd->count[i], nd, i, covered,
+                                  blocks_used);
                 continue;
             }
             if (nd->child[i] <= self || nd->child[i] >= b->node_count || sp + 1 > 256) {
@@ -187,8 +217,11 @@ static int check_tree(const struct bvh *b, const struct prim *prims, size_t n, i
         bad += covered[k] != 1;
     for (k = 0; k < b->node_count; k++)
         bad += reached[k] != 1;
+    for (k = 0; k < b->tri4_count; k++)
+        bad += blocks_used[k] != 1;
     free(covered);
     free(reached);
+    free(blocks_used);
     return bad;
 }
 
@@ -249,7 +282,10 @@ static void test_against_brute_force(void)
                                      : mc_prim_bounds(&prims[k]);
     T_CHECK(check_tree(&b, prims, n, &depth) == 0, "tree invariants");
     T_CHECK(depth < 64, "depth %d", depth);
-    T_NOTE("mixed scene: %zu prims, %zu nodes, depth %d", n, b.node_count, depth);
+    T_NOTE("mixed scene: %zu prims, %zu nodes, depth %d, %zu blocks", n, b.node_count, depth,
+           b.tri4_count);
+    /* Leaves that do not fill their last block, so that the rays below cover the masked lanes. */
+    T_CHECK(4 * b.tri4_count > n, "%zu blocks for %zu prims: no padded lane", b.tri4_count, n);
     for (i = 0; i < RAYS; i++) {
         struct ray r;
         struct hit hb, hf;
@@ -387,6 +423,76 @@ static void test_coplanar(void)
     free(prims);
 }
 
+/* The 4-wide triangle test of the traversal must answer exactly as the scalar one, also where it
+ * hands a lane back to it: rays exactly through mesh vertices and edges (edge functions exactly
+ * 0, recomputed in double by the scalar test), degenerate triangles (collinear or coincident
+ * vertices, which the scalar test rejects after the fact), and spheres and quads sharing the
+ * leaves' blocks. The mesh has integer vertices and the rays are parallel to z from integer and
+ * half-integer points, so the watertight test's sheared coordinates are exact and the zeros are
+ * real. Every such ray over the mesh must hit (no ray slips between triangles), with the
+ * brute-force t, u, v bit for bit. */
+static void test_exact_edges(void)
+{
+    enum { G = 24 };
+    struct prim *prims = malloc((2 * G * G + 3 * G + 8) * sizeof *prims);
+    struct bvh b;
+    mc_diag d;
+    size_t n = 0;
+    int i, j, s, rays = 0, miss = 0, bad = 0, occ_bad = 0, ties = 0;
+    for (j = 0; j < G; j++)
+        for (i = 0; i < G; i++) {
+            /* Heights in quarters, so that the mesh is not flat but stays exact. */
+            vec3 c[4];
+            int k;
+            for (k = 0; k < 4; k++) {
+                int x = i + (k & 1), y = j + (k >> 1);
+                c[k] = v3((float)x, (float)y, 0.25f * (float)((x + 2 * y) % 3));
+            }
+            prims[n++] = triangle(c[0], c[1], c[3]);
+            prims[n++] = triangle(c[0], c[3], c[2]);
+            if (i == j) { /* degenerate: along an edge, and a point */
+                prims[n++] = triangle(c[0], c[1], v3_scale(v3_add(c[0], c[1]), 0.5f));
+                prims[n++] = triangle(c[3], c[3], c[3]);
+            }
+        }
+    for (i = 0; i < 4; i++) {
+        struct prim sp = triangle(v3(3.0f + 5.0f * (float)i, 7.0f, 2.0f), v3(0.75f, 0, 0), v3s(0));
+        sp.kind = PRIM_SPHERE;
+        prims[n++] = sp;
+        prims[n++] = test_prim(PRIM_QUAD, v3(2.0f, 3.0f + 5.0f * (float)i, 1.0f), v3(2, 0, 0),
+                               v3(0, 2, 0));
+    }
+    T_CHECK(mc_bvh_build(&b, prims, n, &d) == MCRT_OK, "build: %s", d.msg);
+    /* From above and from below, through every vertex, edge midpoint and cell centre. */
+    for (s = 0; s < 2; s++)
+        for (j = 0; j <= 2 * G; j++)
+            for (i = 0; i <= 2 * G; i++) {
+                struct ray r = test_ray(v3(0.5f * (float)i, 0.5f * (float)j, s ? -3.0f : 3.0f),
+                                        v3(0.0f, 0.0f, s ? 1.0f : -1.0f));
+                struct hit hb, hf;
+                int fb = mc_bvh_intersect(&b, prims, &r, &hb);
+                int ff = brute_intersect(prims, NULL, n, &r, &hf);
+                rays++;
+                miss += !fb;
+                /* At a vertex or an edge several triangles meet at the same t: the order of
+                 * testing picks one, and u, v are then that one's. */
+                if (fb != ff || (ff && memcmp(&hb.t, &hf.t, sizeof hb.t) != 0))
+                    bad++;
+                else if (ff && hb.prim != hf.prim)
+                    ties++;
+                else if (ff && (hb.u != hf.u || hb.v != hf.v))
+                    bad++;
+                occ_bad += mc_bvh_occluded(&b, prims, &r) != ff;
+            }
+    T_CHECK(miss == 0, "%d of %d rays through vertices and edges slipped through", miss, rays);
+    T_CHECK(bad == 0, "%d of %d rays differ from brute force", bad, rays);
+    T_CHECK(occ_bad == 0, "%d of %d occlusion answers differ", occ_bad, rays);
+    T_NOTE("exact edges: %zu prims, %d rays, %d exact-t ties resolved to another prim", n, rays,
+           ties);
+    mc_bvh_free(&b);
+    free(prims);
+}
+
 /* Non-finite and zero directions: no crash, no endless loop, no hit. */
 static void test_bad_rays(void)
 {
@@ -472,8 +578,10 @@ static void test_parallel_build_same(void)
         T_CHECK(mc_bvh_build_threads(&b2, q, NULL, n, threads, &d) == MCRT_OK, "build: %s", d.msg);
         T_CHECK(b1.node_count == b2.node_count
                     && memcmp(b1.nodes, b2.nodes, b1.node_count * sizeof *b1.nodes) == 0
+                    && b1.tri4_count == b2.tri4_count
+                    && memcmp(b1.tri4, b2.tri4, b1.tri4_count * sizeof *b1.tri4) == 0
                     && memcmp(p1, q, n * sizeof *q) == 0,
-                "%d threads: %zu nodes, 1 thread: %zu; same nodes and order", threads,
+                "%d threads: %zu nodes, 1 thread: %zu; same nodes, blocks and order", threads,
                 b2.node_count, b1.node_count);
         mc_bvh_free(&b2);
         free(q);
@@ -491,6 +599,7 @@ int main(void)
     test_against_brute_force();
     test_coincident_centroids();
     test_coplanar();
+    test_exact_edges();
     test_bad_rays();
     return t_done();
 }

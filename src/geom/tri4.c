@@ -1,0 +1,29 @@
+/* tri4.c: the BVH's triangle blocks for the 4-wide watertight test (Woop, Benthin and Wald, JCGT
+ * 2(1) 2013), filled leaf by leaf from the primitives in leaf order; layout and contract in
+ * tri4.h. */
+#include "geom/tri4.h"
+
+/* Whether the 4-wide test may decide p: a triangle whose vertices are not collinear. The scalar
+ * test rejects hits on collinear triangles after the fact (mc_prim_degenerate); the 4-wide test
+ * has no such check, so those triangles go to scalar lanes. */
+static int decidable(const struct prim *p)
+{
+    return p->kind == PRIM_TRIANGLE && !mc_prim_degenerate(p);
+}
+
+void mc_tri4_fill(struct tri4 *k, const struct prim *prims, uint32_t first, uint32_t count)
+{
+    uint32_t i, lanes = 4 * mc_tri4_blocks(count);
+    for (i = 0; i < lanes; i++) {
+        struct tri4 *blk = &k[i / 4];
+        int lane = (int)(i % 4), v;
+        int simd = i < count && decidable(&prims[first + i]);
+        for (v = 0; v < 3; v++) {
+            vec3 p = simd ? prims[first + i].p[v] : v3s(NAN);
+            blk->v[v][0][lane] = p.x;
+            blk->v[v][1][lane] = p.y;
+            blk->v[v][2][lane] = p.z;
+        }
+        blk->prim[lane] = i < count ? first + i : UINT32_MAX;
+    }
+}
