@@ -57,6 +57,42 @@ struct slab_ray {
 #endif
 };
 
+/* The slab_ray of r, but for the broadcasts (the node test's set-up, below); returns 0, leaving s
+ * unset, for a ray that hits nothing: a non-finite or zero direction, or a non-finite origin. */
+static inline int slab_ray_init(struct slab_ray *s, const struct ray *r)
+{
+    int a;
+#ifdef BVH_SSE
+    /* Two loads cover o and d: (o.x, o.y, o.z, d.x) and (d.x, d.y, d.z, tmax), both inside the
+     * struct. x - x is NaN exactly when x is infinite or NaN, so lanes 0-2 of the ordered test
+     * are all true exactly when the six coordinates are finite; lane 3 (tmax) is ignored. The
+     * reciprocals are one division of four lanes, bitwise the scalar 1.0f / d. */
+    __m128 o = _mm_loadu_ps(&r->o.x), d = _mm_loadu_ps(&r->d.x), inv;
+    float inv4[4];
+    if ((_mm_movemask_ps(_mm_cmpord_ps(_mm_sub_ps(o, o), _mm_sub_ps(d, d))) & 7) != 7 ||
+        (_mm_movemask_ps(_mm_cmpneq_ps(d, _mm_setzero_ps())) & 7) == 0)
+        return 0;
+    inv = _mm_div_ps(_mm_set1_ps(1.0f), d);
+    _mm_storeu_ps(inv4, inv);
+    for (a = 0; a < 3; a++)
+        s->inv[a] = inv4[a];
+#else
+    if (!v3_is_finite(r->o) || !v3_is_finite(r->d) || v3_is_zero(r->d))
+        return 0;
+    s->inv[0] = 1.0f / r->d.x;
+    s->inv[1] = 1.0f / r->d.y;
+    s->inv[2] = 1.0f / r->d.z;
+#endif
+    s->o[0] = r->o.x;
+    s->o[1] = r->o.y;
+    s->o[2] = r->o.z;
+    for (a = 0; a < 3; a++) {
+        s->near[a] = s->inv[a] < 0.0f ? a + 3 : a;
+        s->far[a] = s->inv[a] < 0.0f ? a : a + 3;
+    }
+    return 1;
+}
+
 /* A node test's per-ray set-up: the broadcasts above of the slab_ray's o and inv. */
 static inline void node_prep(struct slab_ray *s)
 {
@@ -205,7 +241,9 @@ struct tri_ray {
 #endif
 };
 
-static void tri_ray_init(struct tri_ray *t, const struct ray *r)
+/* The origin is read from the ray, not from the slab_ray's o: indexing that by a run-time axis
+ * would keep the whole slab_ray in memory, and the node test's constants out of registers. */
+static inline void tri_ray_init(struct tri_ray *t, const struct ray *r)
 {
     mc_ray_prep(&t->q, r);
 #ifdef BVH_SSE
@@ -485,20 +523,10 @@ static ALWAYS_INLINE int traverse(const struct bvh *b, const struct prim *prims,
     struct hit h;
     float tmax = r->tmax;
     uint32_t limit;
-    int sp = 0, found = 0, a;
+    int sp = 0, found = 0;
 
-    if (b->node_count == 0 || !v3_is_finite(r->o) || !v3_is_finite(r->d) || v3_is_zero(r->d))
+    if (b->node_count == 0 || !slab_ray_init(&s, r))
         return 0;
-    s.o[0] = r->o.x;
-    s.o[1] = r->o.y;
-    s.o[2] = r->o.z;
-    s.inv[0] = 1.0f / r->d.x;
-    s.inv[1] = 1.0f / r->d.y;
-    s.inv[2] = 1.0f / r->d.z;
-    for (a = 0; a < 3; a++) {
-        s.near[a] = s.inv[a] < 0.0f ? a + 3 : a;
-        s.far[a] = s.inv[a] < 0.0f ? a : a + 3;
-    }
     prep(&s);
     h.t = tmax;
     limit = item_limit(tmax);

@@ -17,29 +17,6 @@ static vec3 permute(vec3 v, int kx, int ky, int kz)
     return v3(a[kx], a[ky], a[kz]);
 }
 
-void mc_ray_prep(struct ray_prep *q, const struct ray *r)
-{
-    vec3 a = v3_abs(r->d), d;
-    int kx, ky, kz = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
-    kx = kz == 2 ? 0 : kz + 1;
-    ky = kx == 2 ? 0 : kx + 1;
-    /* Swapping x and y for a negative dominant component keeps the winding (Woop et al. §3); the
-     * test accepts both windings anyway, but this keeps the edge-function signs meaningful. */
-    if (v3_get(r->d, kz) < 0.0f) {
-        int s = kx;
-        kx = ky;
-        ky = s;
-    }
-    d = permute(r->d, kx, ky, kz);
-    q->r = *r;
-    q->kx = kx;
-    q->ky = ky;
-    q->kz = kz;
-    q->sx = -d.x / d.z;
-    q->sy = -d.y / d.z;
-    q->sz = 1.0f / d.z;
-}
-
 /* The edge functions of a zero-area triangle are zero only in exact arithmetic: rounded, they can
  * pass the sign test when the ray meets the degenerate segment. Its cross product is therefore
  * checked in double, where the float vertex differences are exact and the products carry 29 more

@@ -59,7 +59,29 @@ struct ray_prep {
     int kx, ky, kz;
     float sx, sy, sz;
 };
-void mc_ray_prep(struct ray_prep *q, const struct ray *r);
+/* Fill q for r. Inline: it runs once per traced ray, inside the traversal's own set-up. */
+static inline void mc_ray_prep(struct ray_prep *q, const struct ray *r)
+{
+    const float d[3] = {r->d.x, r->d.y, r->d.z};
+    float ax = fabsf(d[0]), ay = fabsf(d[1]), az = fabsf(d[2]);
+    int kx, ky, kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
+    kx = kz == 2 ? 0 : kz + 1;
+    ky = kx == 2 ? 0 : kx + 1;
+    /* Swapping x and y for a negative dominant component keeps the winding (Woop et al. §3); the
+     * test accepts both windings anyway, but this keeps the edge-function signs meaningful. */
+    if (d[kz] < 0.0f) {
+        int s = kx;
+        kx = ky;
+        ky = s;
+    }
+    q->r = *r;
+    q->kx = kx;
+    q->ky = ky;
+    q->kz = kz;
+    q->sx = -d[kx] / d[kz];
+    q->sy = -d[ky] / d[kz];
+    q->sz = 1.0f / d[kz];
+}
 /* mc_prim_intersect with the constants precomputed; the results are bitwise the same. */
 int mc_prim_intersect_prep(const struct prim *p, const struct ray_prep *q, struct hit *h);
 /* Whether triangle p's vertices are collinear: the cross product of its edges, in double, is
