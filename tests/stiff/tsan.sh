@@ -4,11 +4,7 @@
 # fails on any ThreadSanitizer report or failed render. Not part of `make test` (it needs its own
 # build). Prints "ok ..." or "FAIL ...: why" per scene, then "N passed, N failed".
 O=${O:-build-tsan}
-MCRT=$O/mcrt
-passed=0
-failed=0
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+. tests/harness.sh.inc
 # halt_on_error: the first race ends the run with exitcode 66, so a race cannot pass unnoticed.
 TSAN_OPTIONS="halt_on_error=1 exitcode=66 ${TSAN_OPTIONS:-}"
 export TSAN_OPTIONS
@@ -16,13 +12,10 @@ for scene in scenes/*.mcrt tests/stiff/*.mcrt; do
     "$MCRT" "$scene" --spp 2 --threads 4 -o "$tmp/out.pfm" 2>"$tmp/err"
     rc=$?
     if [ "$rc" -eq 0 ] && ! grep -q "ThreadSanitizer" "$tmp/err"; then
-        echo "ok $scene"
-        passed=$((passed + 1))
+        ok "$scene"
     else
-        echo "FAIL $scene: exit status $rc"
+        fail "$scene" "exit status $rc"
         head -n 30 "$tmp/err"
-        failed=$((failed + 1))
     fi
 done
-echo "$passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+finish

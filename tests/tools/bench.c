@@ -25,6 +25,7 @@
 #include "core/rng.h"
 #include "geom/bvh.h"
 #include "geom/bvh_node.h"
+#include "median.h"
 
 #ifdef MCRT_HAVE_EMBREE
 #include <embree3/rtcore.h>
@@ -465,18 +466,6 @@ static double run(struct job *j, int threads, size_t passes, double *wall)
     for (i = 0; i < threads; i++)
         cpu += w[i].cpu;
     return cpu;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return v[n / 2];
 }
 
 struct timing {

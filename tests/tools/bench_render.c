@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "mcrt.h"
+#include "median.h"
 
 /* A static pinhole scene of diffuse surfaces under point lights: the specialised path draws no
  * lens or time samples, queries no motion BVH and does no MIS. */
@@ -72,18 +73,6 @@ static int render_once(mcrt_scene *s, int all_features, int threads, int spp, do
     *samples = (long long)w * h * spp;
     mcrt_render_free(r);
     return 1;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return v[n / 2];
 }
 
 /* A 1,000,000-triangle scene: a terrain of 1000 x 500 quads, z = 0.05 sin(40x) sin(40y) over

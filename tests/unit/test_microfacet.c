@@ -236,6 +236,26 @@ static void test_ggx_smith(void)
 
 static int chi2_count;
 
+/* Run the chi-square test s (numbered by chi2_count for its seed) and check, besides the
+ * histogram, that the pdf integrates to the fraction of samples returned (tolerance: see
+ * run_chi2). */
+static void run_dir_spec(struct chi2_dir_spec *s, const char *name)
+{
+    struct chi2_result r;
+    double p, tol;
+    s->seed = 1000 + (uint64_t)chi2_count;
+    s->tests = CHI2_TESTS;
+    chi2_count++;
+    r = chi2_run_directions(s);
+    p = 1.0 - (double)r.missing / 1e6;
+    tol = 4.0 * sqrt(p * (1.0 - p) / 1e6) + 2e-4;
+    T_NOTE("chi2 %s: chi2 %.1f, dof %d, p %.3f; pdf integral %.6f vs sampled fraction %.6f", name, r.chi2,
+           r.dof, r.p, r.integral, p);
+    T_CHECK(r.pass, "%s: %s", name, r.why);
+    T_CHECK(fabs(r.integral - p) <= tol, "%s: pdf integral %.6f, sampled fraction %.6f (tol %.2g)", name,
+            r.integral, p, tol);
+}
+
 /* One chi-square test over wo's hemisphere (opaque materials), whose rim is where the
  * reflection pdf drops to 0. Near grazing the reflected lobe is narrow in φ: a sideways tilt δ
  * of the microfacet turns wi by 2(wo·wm)δ, so the lobe is ~2α cosθo wide (0.0035 rad at
@@ -249,25 +269,13 @@ static void run_chi2(const char *what, struct bsdf b, double theta)
 {
     struct bsdf_case c;
     struct chi2_dir_spec s;
-    struct chi2_result r;
     char name[96];
-    double p, tol;
     c.b = b;
     c.wo = dir(theta, 0.7);
     snprintf(name, sizeof name, "%s, alpha %g, wo at %g deg", what, b.alpha, theta);
     s = chi2_dir_spec_of(name, bsdf_case_sample, bsdf_case_pdf, &c, PI / 2);
     s.nphi = theta >= 85.0 ? 640 : 160;
-    s.seed = 1000 + (uint64_t)chi2_count;
-    s.tests = CHI2_TESTS;
-    chi2_count++;
-    r = chi2_run_directions(&s);
-    p = 1.0 - (double)r.missing / 1e6;
-    tol = 4.0 * sqrt(p * (1.0 - p) / 1e6) + 2e-4;
-    T_NOTE("chi2 %s: chi2 %.1f, dof %d, p %.3f; pdf integral %.6f vs sampled fraction %.6f", name, r.chi2,
-           r.dof, r.p, r.integral, p);
-    T_CHECK(r.pass, "%s: %s", name, r.why);
-    T_CHECK(fabs(r.integral - p) <= tol, "%s: pdf integral %.6f, sampled fraction %.6f (tol %.2g)", name,
-            r.integral, p, tol);
+    run_dir_spec(&s, name);
 }
 
 /* Glass over the whole sphere, in 1° cells of θ. Its refraction pdf jumps from 0 where the
@@ -286,25 +294,13 @@ static void run_chi2_glass(float alpha, double theta)
 {
     struct bsdf_case c;
     struct chi2_dir_spec s;
-    struct chi2_result r;
     char name[96];
-    double p, tol;
     c.b = make(MATERIAL_GLASS, v3(1.0f, 0.9f, 0.8f), 1.5f, alpha);
     c.wo = dir(theta, 0.7);
     snprintf(name, sizeof name, "glass ior 1.5, alpha %g, wo at %.2f deg", alpha, theta);
     s = chi2_dir_spec_of(name, bsdf_case_sample, bsdf_case_pdf, &c, 0.0);
     s.ntheta = 180;
-    s.seed = 1000 + (uint64_t)chi2_count;
-    s.tests = CHI2_TESTS;
-    chi2_count++;
-    r = chi2_run_directions(&s);
-    p = 1.0 - (double)r.missing / 1e6;
-    tol = 4.0 * sqrt(p * (1.0 - p) / 1e6) + 2e-4;
-    T_NOTE("chi2 %s: chi2 %.1f, dof %d, p %.3f; pdf integral %.6f vs sampled fraction %.6f", name, r.chi2,
-           r.dof, r.p, r.integral, p);
-    T_CHECK(r.pass, "%s: %s", name, r.why);
-    T_CHECK(fabs(r.integral - p) <= tol, "%s: pdf integral %.6f, sampled fraction %.6f (tol %.2g)", name,
-            r.integral, p, tol);
+    run_dir_spec(&s, name);
 }
 
 static void test_chi2(void)
