@@ -544,7 +544,12 @@ struct rss {
 static struct rss rss_since(long long mark, size_t triangles)
 {
     struct rss r = {-1, -1};
-    long long hwm = status_bytes("VmHWM"), now = status_bytes("VmRSS");
+    long long hwm = status_bytes("VmHWM"), now;
+    /* Kept is what the build still holds: heap it freed is given back first, as for the mark. */
+#ifdef __GLIBC__
+    malloc_trim(0);
+#endif
+    now = status_bytes("VmRSS");
     if (mark >= 0 && hwm >= 0 && now >= 0) {
         r.peak = (double)(hwm - mark) / (double)triangles;
         r.kept = (double)(now - mark) / (double)triangles;
@@ -903,6 +908,13 @@ int main(int argc, char **argv)
     }
     if (!self_check())
         return 1;
+#ifdef __GLIBC__
+    /* glibc raises its mmap threshold each time a large block is freed, so that after the first
+     * scene the next scenes' build buffers would come from the heap instead of fresh mappings and
+     * their memory figures would depend on what ran before. A fixed threshold (the default value)
+     * turns that off: every build is measured as in a fresh process. */
+    mallopt(M_MMAP_THRESHOLD, 128 * 1024);
+#endif
     threads = ncpu < 1 ? 1 : ncpu > 64 ? 64 : (int)ncpu;
     printf("mcrt BVH benchmark: %d-wide BVH, %zu-byte nodes, %zu-byte primitives, single rays; "
            "%d threads; %s\n", BVH_WIDTH, sizeof(struct bvh_node), sizeof(struct prim), threads,
