@@ -8,7 +8,7 @@
 /* 8 rather than 4: measured against Embree on the anchor's ray sets, 8-wide nodes (tested as two
  * SSE halves) traced 15 to 30% faster than 4-wide ones, from the shallower tree (depth 7 against
  * 9 to 14); one 8-wide AVX test instead of the two halves gained another 5 to 15% where the
- * processor has AVX (src/geom/bvh.c). A multiple of 4, for the SSE node test. */
+ * processor has AVX2 (src/geom/bvh.c). A multiple of 4, for the SSE node test. */
 #define BVH_WIDTH 8
 
 /* No node is deeper than this (the build guarantees it, see SAH_DEPTH in bvh_build.c): a traversal

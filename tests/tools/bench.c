@@ -10,7 +10,9 @@
  * rays with rtcIntersect1 / rtcOccluded1 interleaved with mcrt's runs, prints the ratio of
  * throughputs per row and compares the answers ray by ray. Only this tool links Embree.
  *
- *   bench [--scene sphere-1M|grid-city|spheres-16] [--quick]
+ *   bench [--scene sphere-1M|grid-city|spheres-16] [--quick] [--mcrt-only]
+ *
+ * --mcrt-only leaves Embree out (for profiling mcrt alone, e.g. under callgrind).
  */
 #include <pthread.h>
 #include <stdio.h>
@@ -34,6 +36,7 @@
 #define TRACERS 1
 #endif
 static const char *const tracer_names[3] = {"mcrt", "Embree MEDIUM", "Embree HIGH"};
+static int tracers = TRACERS; /* 1 with --mcrt-only */
 
 /* The definitions are normative in double precision with no FMA contraction. GCC in ISO C mode
  * (-std=c99) already compiles with -ffp-contract=off and does not know this pragma; the geometry
@@ -734,7 +737,7 @@ static int bench_scene(const struct scene_def *sd, int threads, int quick, struc
     struct job j[TRACERS];
     float *tbuf[TRACERS];
     uint32_t *pbuf[TRACERS];
-    int ntracers = TRACERS, e;
+    int ntracers = tracers, e;
 #ifdef MCRT_HAVE_EMBREE
     RTCDevice dev;
     RTCScene esc[2];
@@ -811,13 +814,15 @@ static int bench_scene(const struct scene_def *sd, int threads, int quick, struc
 
 #ifdef MCRT_HAVE_EMBREE
     /* One build thread, as mcrt's build; tracing threads are the benchmark's own pthreads. */
-    dev = rtcNewDevice("threads=1");
-    if (!dev) {
+    dev = ntracers > 1 ? rtcNewDevice("threads=1") : NULL;
+    if (ntracers > 1 && !dev) {
         fprintf(stderr, "bench: rtcNewDevice failed\n");
         return 0;
     }
-    esc[0] = embree_scene(dev, &m, RTC_BUILD_QUALITY_MEDIUM, "Embree 3 MEDIUM, 1 thread", builds);
-    esc[1] = embree_scene(dev, &m, RTC_BUILD_QUALITY_HIGH, "Embree 3 HIGH, 1 thread", builds);
+    esc[0] = dev ? embree_scene(dev, &m, RTC_BUILD_QUALITY_MEDIUM, "Embree 3 MEDIUM, 1 thread",
+                                builds) : NULL;
+    esc[1] = dev ? embree_scene(dev, &m, RTC_BUILD_QUALITY_HIGH, "Embree 3 HIGH, 1 thread",
+                                builds) : NULL;
 #endif
 
     for (i = 0; i < SET_COUNT; i++)
@@ -861,9 +866,11 @@ static int bench_scene(const struct scene_def *sd, int threads, int quick, struc
         free(pbuf[e]);
     }
 #ifdef MCRT_HAVE_EMBREE
-    rtcReleaseScene(esc[0]);
-    rtcReleaseScene(esc[1]);
-    rtcReleaseDevice(dev);
+    if (dev) {
+        rtcReleaseScene(esc[0]);
+        rtcReleaseScene(esc[1]);
+        rtcReleaseDevice(dev);
+    }
 #endif
     mc_bvh_free(&b);
     free(prims);
@@ -899,10 +906,13 @@ int main(int argc, char **argv)
     for (i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--quick") == 0) {
             quick = 1;
+        } else if (strcmp(argv[i], "--mcrt-only") == 0) {
+            tracers = 1;
         } else if (strcmp(argv[i], "--scene") == 0 && i + 1 < argc) {
             only = argv[++i];
         } else {
-            fprintf(stderr, "usage: bench [--scene sphere-1M|grid-city|spheres-16] [--quick]\n");
+            fprintf(stderr, "usage: bench [--scene sphere-1M|grid-city|spheres-16] [--quick] "
+                            "[--mcrt-only]\n");
             return 2;
         }
     }
@@ -959,7 +969,7 @@ int main(int argc, char **argv)
     for (i = 0; i < nrows; i++) {
         const struct row *r = &rows[i];
         int e;
-        for (e = 0; e < TRACERS; e++) {
+        for (e = 0; e < tracers; e++) {
             printf("%-11s %-8s %-13s %9zu | %9.2f %10.1f %10.2f | %9.2f %10.1f %10.2f", r->scene,
                    r->set, tracer_names[e], r->rays, 1e3 / r->one[e].ns_per_ray,
                    r->one[e].ns_per_ray, r->one[e].wall_mrays, 1e3 / r->all[e].ns_per_ray,
