@@ -293,9 +293,9 @@ static ALWAYS_INLINE void tri4_test(const struct tri4 *k, const struct tri_ray *
     __m128 e1 = _mm_sub_ps(_mm_mul_ps(cx, ay), _mm_mul_ps(cy, ax));
     __m128 e2 = _mm_sub_ps(_mm_mul_ps(ax, by), _mm_mul_ps(ay, bx));
     __m128 det = _mm_add_ps(_mm_add_ps(e0, e1), e2);
-    __m128 ts = _mm_add_ps(_mm_add_ps(_mm_mul_ps(e0, _mm_mul_ps(r->sz, az)),
-                                      _mm_mul_ps(e1, _mm_mul_ps(r->sz, bz))),
-                           _mm_mul_ps(e2, _mm_mul_ps(r->sz, cz)));
+    __m128 zs[3] = {_mm_mul_ps(r->sz, az), _mm_mul_ps(r->sz, bz), _mm_mul_ps(r->sz, cz)};
+    __m128 ts = _mm_add_ps(_mm_add_ps(_mm_mul_ps(e0, zs[0]), _mm_mul_ps(e1, zs[1])),
+                           _mm_mul_ps(e2, zs[2]));
     __m128 neg = _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(e0, zero), _mm_cmplt_ps(e1, zero)),
                            _mm_cmplt_ps(e2, zero));
     __m128 pos = _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(e0, zero), _mm_cmpgt_ps(e1, zero)),
@@ -311,9 +311,34 @@ static ALWAYS_INLINE void tri4_test(const struct tri4 *k, const struct tri_ray *
     out->undecided = und;
     out->hit = 0;
     if (cand) {
+        /* t must exceed mc_tri_t_error's bound (prim.h), computed in the same operations. */
+        const __m128 sign = _mm_set1_ps(-0.0f);
+        const float g2 = 2 * 0x1p-24f / (1 - 2 * 0x1p-24f), g3 = 3 * 0x1p-24f / (1 - 3 * 0x1p-24f),
+                    g5 = 5 * 0x1p-24f / (1 - 5 * 0x1p-24f);
         __m128 t = _mm_div_ps(ts, det);
+        __m128 mx = _mm_max_ps(_mm_max_ps(_mm_andnot_ps(sign, ax), _mm_andnot_ps(sign, bx)),
+                               _mm_andnot_ps(sign, cx));
+        __m128 my = _mm_max_ps(_mm_max_ps(_mm_andnot_ps(sign, ay), _mm_andnot_ps(sign, by)),
+                               _mm_andnot_ps(sign, cy));
+        __m128 mz = _mm_max_ps(_mm_max_ps(_mm_andnot_ps(sign, zs[0]), _mm_andnot_ps(sign, zs[1])),
+                               _mm_andnot_ps(sign, zs[2]));
+        __m128 me = _mm_max_ps(_mm_max_ps(_mm_andnot_ps(sign, e0), _mm_andnot_ps(sign, e1)),
+                               _mm_andnot_ps(sign, e2));
+        __m128 dz = _mm_mul_ps(_mm_set1_ps(g3), mz);
+        __m128 dx = _mm_mul_ps(_mm_set1_ps(g5), _mm_add_ps(mx, mz));
+        __m128 dy = _mm_mul_ps(_mm_set1_ps(g5), _mm_add_ps(my, mz));
+        __m128 de = _mm_mul_ps(_mm_set1_ps(2.0f),
+                               _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_mul_ps(_mm_set1_ps(g2), mx), my),
+                                                     _mm_mul_ps(dy, mx)),
+                                          _mm_mul_ps(dx, my)));
+        __m128 dt = _mm_div_ps(
+            _mm_mul_ps(_mm_set1_ps(3.0f),
+                       _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_mul_ps(_mm_set1_ps(g3), me), mz),
+                                             _mm_mul_ps(de, mz)),
+                                  _mm_mul_ps(dz, me))),
+            _mm_andnot_ps(sign, det));
         cand &= (unsigned)_mm_movemask_ps(
-            _mm_and_ps(_mm_cmpgt_ps(t, zero), _mm_cmplt_ps(t, _mm_set1_ps(tmax))));
+            _mm_and_ps(_mm_cmpgt_ps(t, dt), _mm_cmplt_ps(t, _mm_set1_ps(tmax))));
         out->hit = cand;
         _mm_storeu_ps(out->t, t);
         _mm_storeu_ps(out->e1, e1);
@@ -340,7 +365,8 @@ static ALWAYS_INLINE void tri4_test(const struct tri4 *k, const struct tri_ray *
               cy = (k->v[2][ky][l] - o[ky]) + r->q.sy * cz;
         float e0 = bx * cy - by * cx, e1 = cx * ay - cy * ax, e2 = ax * by - ay * bx;
         float det = e0 + e1 + e2;
-        float ts = e0 * (r->q.sz * az) + e1 * (r->q.sz * bz) + e2 * (r->q.sz * cz), t;
+        float zs[3] = {r->q.sz * az, r->q.sz * bz, r->q.sz * cz};
+        float ts = e0 * zs[0] + e1 * zs[1] + e2 * zs[2], t;
         if (!(live >> l & 1))
             continue;
         if ((e0 == 0.0f) | (e1 == 0.0f) | (e2 == 0.0f) | (det != det)) {
@@ -352,7 +378,11 @@ static ALWAYS_INLINE void tri4_test(const struct tri4 *k, const struct tri_ray *
         if ((det == 0.0f) | (ts == 0.0f) | ((det < 0.0f) != (ts < 0.0f)))
             continue;
         t = ts / det;
-        if (!(t > 0.0f && t < tmax))
+        if (!(t < tmax)
+            || !(t > mc_tri_t_error(f_max(f_max(fabsf(ax), fabsf(bx)), fabsf(cx)),
+                                    f_max(f_max(fabsf(ay), fabsf(by)), fabsf(cy)),
+                                    f_max(f_max(fabsf(zs[0]), fabsf(zs[1])), fabsf(zs[2])),
+                                    f_max(f_max(fabsf(e0), fabsf(e1)), fabsf(e2)), det)))
             continue;
         out->hit |= 1u << l;
         out->t[l] = t;

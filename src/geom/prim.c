@@ -63,12 +63,20 @@ static int intersect_triangle(const struct prim *p, const struct ray_prep *q, st
     det = e0 + e1 + e2;
     if (det == 0.0f) /* degenerate triangle, or the ray lies in its plane */
         return 0;
-    ts = e0 * (q->sz * a.z) + e1 * (q->sz * b.z) + e2 * (q->sz * c.z);
+    a.z *= q->sz;
+    b.z *= q->sz;
+    c.z *= q->sz;
+    ts = e0 * a.z + e1 * b.z + e2 * c.z;
     /* The scaled distance must have the sign of det for t > 0; rejecting here skips the divide. */
     if (((det < 0.0f) & (ts >= 0.0f)) | ((det > 0.0f) & (ts <= 0.0f)))
         return 0;
     t = ts / det;
-    if (!accept(t, h) || mc_prim_degenerate(p))
+    if (!accept(t, h)
+        || !(t > mc_tri_t_error(f_max(f_max(fabsf(a.x), fabsf(b.x)), fabsf(c.x)),
+                                f_max(f_max(fabsf(a.y), fabsf(b.y)), fabsf(c.y)),
+                                f_max(f_max(fabsf(a.z), fabsf(b.z)), fabsf(c.z)),
+                                f_max(f_max(fabsf(e0), fabsf(e1)), fabsf(e2)), det))
+        || mc_prim_degenerate(p))
         return 0;
     h->t = t;
     h->u = e1 / det;

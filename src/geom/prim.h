@@ -82,6 +82,22 @@ static inline void mc_ray_prep(struct ray_prep *q, const struct ray *r)
     q->sy = -d[ky] / d[kz];
     q->sz = 1.0f / d[kz];
 }
+/* Bound on the rounding error of the watertight test's distance t = ts / det (Pharr, Jakob and
+ * Humphreys, "Physically Based Rendering", 4th ed., §6.8.7; pbrt-v4's Triangle::Intersect), from
+ * the largest magnitudes of the translated and sheared vertices' x, y and scaled z and of the edge
+ * functions. A hit counts only when t exceeds it: a ray that starts in a triangle's plane (one
+ * spawned at a concave corner lies in the other face's plane) meets it at t = 0, which rounding
+ * turns into a tiny t of either sign. The 4-wide test in bvh.c repeats these operations in the
+ * same order, so that both decide alike. */
+static inline float mc_tri_t_error(float max_x, float max_y, float max_z, float max_e, float det)
+{
+    const float g2 = 2 * 0x1p-24f / (1 - 2 * 0x1p-24f), g3 = 3 * 0x1p-24f / (1 - 3 * 0x1p-24f),
+                g5 = 5 * 0x1p-24f / (1 - 5 * 0x1p-24f);
+    float dz = g3 * max_z, dx = g5 * (max_x + max_z), dy = g5 * (max_y + max_z);
+    float de = 2.0f * (g2 * max_x * max_y + dy * max_x + dx * max_y);
+    return 3.0f * (g3 * max_e * max_z + de * max_z + dz * max_e) / fabsf(det);
+}
+
 /* mc_prim_intersect with the constants precomputed; the results are bitwise the same. */
 int mc_prim_intersect_prep(const struct prim *p, const struct ray_prep *q, struct hit *h);
 /* Whether triangle p's vertices are collinear: the cross product of its edges, in double, is
