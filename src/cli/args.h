@@ -13,6 +13,10 @@ struct arg_spec {
     int has_value;    /* 1: takes a value; 0: a flag */
 };
 
+/* The commands' exit statuses, as documented in --help and mcrt(1): success (for `mcrt diff`: the
+ * images agree), failure (the render, or the comparison's limits), bad input or usage. */
+enum { STATUS_OK = 0, STATUS_FAIL = 1, STATUS_USAGE = 2 };
+
 /* Results of mc_args_next besides an index into the spec table. */
 enum { ARG_END = -1, ARG_OPERAND = -2, ARG_ERROR = -3 };
 

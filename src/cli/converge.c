@@ -11,7 +11,7 @@
 #include "cli/args.h"
 #include "mcrt.h"
 
-enum { EXIT_OK = 0, EXIT_FAIL = 1, EXIT_USAGE = 2, MAX_RUNGS = 32, MAX_VARIANTS = 8 };
+enum { MAX_RUNGS = 32, MAX_VARIANTS = 8 };
 
 static const char usage[] =
     "usage: mcrt converge [options] SCENE\n"
@@ -181,7 +181,7 @@ static int run(struct converge *c)
     char *gp = out_path(c, "converge.gp"), *png = out_path(c, "converge.png"), *ref = NULL;
     char err[512];
     FILE *f = NULL;
-    int v, i, code = EXIT_FAIL, n = c->key ? c->nvalues : 1;
+    int v, i, code = STATUS_FAIL, n = c->key ? c->nvalues : 1;
     double top = 0.0;
 
     if (!s || !csv || !tmp || !gp || !png) {
@@ -190,7 +190,7 @@ static int run(struct converge *c)
     }
     if (mcrt_scene_load_file(s, c->scene) != MCRT_OK) {
         fprintf(stderr, "%s\n", mcrt_scene_error(s));
-        code = EXIT_USAGE;
+        code = STATUS_USAGE;
         goto done;
     }
     if (!(f = fopen(csv, "w"))) {
@@ -230,7 +230,7 @@ static int run(struct converge *c)
                 goto done;
             if (mcrt_diff(tmp, c->ref ? c->ref : ref, &dopt, &dr, err, sizeof err) != MCRT_OK) {
                 fprintf(stderr, "mcrt: %s\n", err);
-                code = EXIT_USAGE;
+                code = STATUS_USAGE;
                 goto done;
             }
             fprintf(f, "%s,%s,%d,%.6g,%.6g,%.6g,%.6g\n",
@@ -247,7 +247,7 @@ static int run(struct converge *c)
         goto done;
     }
     f = NULL;
-    code = EXIT_OK;
+    code = STATUS_OK;
     if (!write_plot(c, csv, gp, png))
         fprintf(stderr, "mcrt: cannot write '%s'\n", gp);
     else {
@@ -307,17 +307,17 @@ int mc_cli_converge(int argc, char **argv)
         case OPT_QUIET: c.quiet = 1; break;
         case OPT_HELP:
             fputs(usage, stdout);
-            return fflush(stdout) == 0 ? EXIT_OK : EXIT_FAIL;
+            return fflush(stdout) == 0 ? STATUS_OK : STATUS_FAIL;
         }
         if (!ok) {
             for (i = 0; i < c.nvalues; i++)
                 free(c.values[i]);
-            return EXIT_USAGE;
+            return STATUS_USAGE;
         }
     }
     if (!c.scene) {
         fprintf(stderr, "mcrt: usage: mcrt converge [options] SCENE (see mcrt converge --help)\n");
-        code = EXIT_USAGE;
+        code = STATUS_USAGE;
     } else
         code = run(&c);
     for (i = 0; i < c.nvalues; i++)

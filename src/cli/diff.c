@@ -10,8 +10,6 @@
 #include "cli/args.h"
 #include "mcrt.h"
 
-enum { EXIT_PASS = 0, EXIT_FAIL = 1, EXIT_USAGE = 2 };
-
 static const char usage[] =
     "usage: mcrt diff [options] TEST REF\n"
     "Compare the image TEST with the reference REF (PNG, EXR or PFM of the same size): MSE,\n"
@@ -71,7 +69,7 @@ int mc_cli_diff(int argc, char **argv)
     mcrt_diff_result r;
     const char *v, *files[2] = {NULL, NULL};
     double max_relmse = -1.0, max_bias = -1.0;
-    int opt, nfiles = 0, quiet = 0, code = EXIT_PASS, crop[4];
+    int opt, nfiles = 0, quiet = 0, code = STATUS_OK, crop[4];
     char *zpath = NULL, error[512];
 
     mcrt_diff_options_init(&o);
@@ -79,11 +77,11 @@ int mc_cli_diff(int argc, char **argv)
     while ((opt = mc_args_next(&p, options, &v)) != ARG_END) {
         int ok = 1;
         switch (opt) {
-        case ARG_ERROR: return EXIT_USAGE;
+        case ARG_ERROR: return STATUS_USAGE;
         case ARG_OPERAND:
             if (nfiles == 2) {
                 fprintf(stderr, "mcrt: diff takes two images, TEST and REF; '%s' is a third\n", v);
-                return EXIT_USAGE;
+                return STATUS_USAGE;
             }
             files[nfiles++] = v;
             break;
@@ -104,25 +102,25 @@ int mc_cli_diff(int argc, char **argv)
         case OPT_QUIET: quiet = 1; break;
         case OPT_HELP:
             fputs(usage, stdout);
-            return fflush(stdout) == 0 ? EXIT_PASS : EXIT_FAIL;
+            return fflush(stdout) == 0 ? STATUS_OK : STATUS_FAIL;
         }
         if (!ok)
-            return EXIT_USAGE;
+            return STATUS_USAGE;
     }
     if (nfiles != 2) {
         fprintf(stderr, "mcrt: usage: mcrt diff [options] TEST REF (see mcrt diff --help)\n");
-        return EXIT_USAGE;
+        return STATUS_USAGE;
     }
     if (o.variance && !(o.z_image = zpath = z_image_path(files[0]))) {
         fprintf(stderr, "mcrt: out of memory\n");
-        return EXIT_FAIL;
+        return STATUS_FAIL;
     }
     if (mcrt_diff(files[0], files[1], &o, &r, error, sizeof error) != MCRT_OK) {
         fprintf(stderr, "mcrt: %s\n", error);
         free(zpath);
         /* Images that cannot be read or compared are bad input; a z image that cannot be
          * written is a failure. */
-        return r.width == 0 || !r.ztest ? EXIT_USAGE : EXIT_FAIL;
+        return r.width == 0 || !r.ztest ? STATUS_USAGE : STATUS_FAIL;
     }
     if (!quiet) {
         print_stats("whole image", &r.whole);
@@ -132,12 +130,12 @@ int mc_cli_diff(int argc, char **argv)
     if (max_relmse >= 0.0 && !(r.crop.relmse <= max_relmse)) {
         fprintf(stderr, "mcrt: relative MSE %.4g exceeds --max-relmse %g\n", r.crop.relmse,
                 max_relmse);
-        code = EXIT_FAIL;
+        code = STATUS_FAIL;
     }
     if (max_bias >= 0.0 && !(fabs(r.crop.bias) <= max_bias)) {
         fprintf(stderr, "mcrt: bias %.4g exceeds --max-bias %g in magnitude\n", r.crop.bias,
                 max_bias);
-        code = EXIT_FAIL;
+        code = STATUS_FAIL;
     }
     if (r.ztest) {
         if (!quiet)
@@ -148,11 +146,11 @@ int mc_cli_diff(int argc, char **argv)
         if (!r.ztest_pass) {
             fprintf(stderr, "mcrt: z-test failed: %.4f%% of pixels agree, 99.75%% needed; z image "
                             "in %s\n", 100.0 * r.agree, zpath);
-            code = EXIT_FAIL;
+            code = STATUS_FAIL;
         }
     }
     free(zpath);
     if (fflush(stdout) != 0)
-        return EXIT_FAIL;
+        return STATUS_FAIL;
     return code;
 }

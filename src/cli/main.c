@@ -16,9 +16,6 @@
 #include "cli/diff.h"
 #include "mcrt.h"
 
-/* Exit statuses, as documented in --help and mcrt(1). */
-enum { EXIT_OK = 0, EXIT_FAIL = 1, EXIT_USAGE = 2 };
-
 static const char usage[] =
     "usage: mcrt [render] [options] SCENE\n"
     "       mcrt info SCENE\n"
@@ -81,7 +78,7 @@ static int print_version(void)
         if (mcrt_format_supported(formats[i].suffix))
             printf(" %s", formats[i].suffix);
     printf("\n");
-    return fflush(stdout) == 0 ? EXIT_OK : EXIT_FAIL;
+    return fflush(stdout) == 0 ? STATUS_OK : STATUS_FAIL;
 }
 
 /* The suffix of path's last component without the dot ("" if none). */
@@ -243,11 +240,11 @@ static int parse_render_args(int argc, char **argv, struct render_args *a)
     while ((opt = mc_args_next(&p, render_options, &v)) != ARG_END) {
         switch (opt) {
         case ARG_ERROR:
-            return EXIT_USAGE;
+            return STATUS_USAGE;
         case ARG_OPERAND:
             if (a->scene) {
                 fprintf(stderr, "mcrt: more than one scene given ('%s' and '%s')\n", a->scene, v);
-                return EXIT_USAGE;
+                return STATUS_USAGE;
             }
             a->scene = v;
             break;
@@ -256,22 +253,22 @@ static int parse_render_args(int argc, char **argv, struct render_args *a)
             break;
         case OPT_SPP:
             if (!mc_args_int("spp", v, 1, 2147483647, &a->spp))
-                return EXIT_USAGE;
+                return STATUS_USAGE;
             break;
         case OPT_THREADS:
             if (!mc_args_int("threads", v, 0, 2147483647, &a->threads))
-                return EXIT_USAGE;
+                return STATUS_USAGE;
             break;
         case OPT_SEED:
             if (!mc_args_u64("seed", v, &a->seed))
-                return EXIT_USAGE;
+                return STATUS_USAGE;
             break;
         case OPT_INTEGRATOR:
             if (strcmp(v, "path") != 0 && strcmp(v, "direct") != 0 && strcmp(v, "mis") != 0
                 && strcmp(v, "bsdf") != 0 && strcmp(v, "light") != 0) {
                 fprintf(stderr, "mcrt: --integrator: expected path, direct, mis, bsdf or light, got "
                                 "'%s'\n", v);
-                return EXIT_USAGE;
+                return STATUS_USAGE;
             }
             a->integrator = v;
             break;
@@ -286,15 +283,15 @@ static int parse_render_args(int argc, char **argv, struct render_args *a)
             break;
         case OPT_CROP:
             if (!mc_args_window("crop", v, a->crop))
-                return EXIT_USAGE;
+                return STATUS_USAGE;
             break;
         case OPT_TIME:
             if (!mc_args_real("time", v, 1, 0, &a->time_budget))
-                return EXIT_USAGE;
+                return STATUS_USAGE;
             break;
         case OPT_TARGET_ERROR:
             if (!mc_args_real("target-error", v, 1, 0, &a->target_error))
-                return EXIT_USAGE;
+                return STATUS_USAGE;
             break;
         case OPT_ADAPTIVE:
             a->adaptive = 1;
@@ -304,7 +301,7 @@ static int parse_render_args(int argc, char **argv, struct render_args *a)
                 && strcmp(v, "sobol") != 0) {
                 fprintf(stderr, "mcrt: --sampler: expected random, stratified or sobol, got "
                                 "'%s'\n", v);
-                return EXIT_USAGE;
+                return STATUS_USAGE;
             }
             a->sampler = v;
             break;
@@ -313,14 +310,14 @@ static int parse_render_args(int argc, char **argv, struct render_args *a)
             break;
         case OPT_HELP:
             fputs(usage, stdout);
-            return fflush(stdout) == 0 ? EXIT_OK : EXIT_FAIL;
+            return fflush(stdout) == 0 ? STATUS_OK : STATUS_FAIL;
         case OPT_VERSION:
             return print_version();
         }
     }
     if (!a->scene) {
         fprintf(stderr, "mcrt: no scene file given (see mcrt --help)\n");
-        return EXIT_USAGE;
+        return STATUS_USAGE;
     }
     return -1;
 }
@@ -363,7 +360,7 @@ static int interrupted(mcrt_render *r, const char *output)
     }
     if (mcrt_render_save(r, output) != MCRT_OK) {
         fprintf(stderr, "mcrt: %s\n", mcrt_render_error(r));
-        return EXIT_FAIL;
+        return STATUS_FAIL;
     }
     fprintf(stderr, "mcrt: interrupted; wrote %s with the %d complete pass%s (%d spp)\n", output,
             st.passes, st.passes == 1 ? "" : "es", st.spp);
@@ -379,18 +376,18 @@ static int render(const struct render_args *a, const char *output)
     mcrt_stats st;
     struct progress prog;
     mcrt_status status;
-    int code = EXIT_FAIL;
+    int code = STATUS_FAIL;
     char passes[96] = "";
 
     if (!scene) {
         fprintf(stderr, "mcrt: out of memory\n");
-        return EXIT_FAIL;
+        return STATUS_FAIL;
     }
     status = mcrt_scene_load_file(scene, a->scene);
     if (status != MCRT_OK) {
         fprintf(stderr, "%s\n", mcrt_scene_error(scene)); /* already "file:line:col: ..." */
         mcrt_scene_free(scene);
-        return status == MCRT_ERR_NOMEM ? EXIT_FAIL : EXIT_USAGE;
+        return status == MCRT_ERR_NOMEM ? STATUS_FAIL : STATUS_USAGE;
     }
     mcrt_options_init(&o);
     o.spp = a->spp;
@@ -432,7 +429,7 @@ static int render(const struct render_args *a, const char *output)
     if (status != MCRT_OK) {
         fprintf(stderr, "mcrt: %s\n", mcrt_render_error(r));
         /* MCRT_ERR_INVALID: options the library refused (e.g. more spp than it allows). */
-        code = status == MCRT_ERR_INVALID ? EXIT_USAGE : EXIT_FAIL;
+        code = status == MCRT_ERR_INVALID ? STATUS_USAGE : STATUS_FAIL;
         goto done;
     }
     if (mcrt_render_save(r, output) != MCRT_OK) {
@@ -460,7 +457,7 @@ static int render(const struct render_args *a, const char *output)
                 st.seconds < 10.0 ? 2 : 1, st.seconds,
                 st.seconds > 0.0 ? (double)st.rays / st.seconds * 1e-6 : 0.0, st.nan_count,
                 st.est_relmse, st.efficiency, passes);
-    code = EXIT_OK;
+    code = STATUS_OK;
 done:
     mcrt_render_free(r);
     mcrt_scene_free(scene);
@@ -478,18 +475,18 @@ static int cmd_render(int argc, char **argv)
     output = a.output ? a.output : (owned = default_output(a.scene, mcrt_format_supported("png") ? "png" : "pfm"));
     if (!output) {
         fprintf(stderr, "mcrt: out of memory\n");
-        return EXIT_FAIL;
+        return STATUS_FAIL;
     }
     /* Everything that can be known to fail is checked before the render, not after it. */
     if (!check_output(output) || !check_folder(output) || (a.stats && !check_folder(a.stats)))
-        code = EXIT_USAGE;
+        code = STATUS_USAGE;
     else if (a.aovs && strcasecmp(suffix_of(output), "exr") != 0) {
         fprintf(stderr, "mcrt: --aov needs an EXR image, not '%s'\n", output);
-        code = EXIT_USAGE;
+        code = STATUS_USAGE;
     }
     else if (same_file(a.scene, output) || (a.stats && same_file(a.scene, a.stats))) {
         fprintf(stderr, "mcrt: refusing to overwrite the scene file '%s'\n", a.scene);
-        code = EXIT_USAGE;
+        code = STATUS_USAGE;
     } else
         code = render(&a, output);
     free(owned);
@@ -505,23 +502,23 @@ static int cmd_info(int argc, char **argv)
     int code;
     if (argc == 2 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0)) {
         fputs(usage, stdout);
-        return fflush(stdout) == 0 ? EXIT_OK : EXIT_FAIL;
+        return fflush(stdout) == 0 ? STATUS_OK : STATUS_FAIL;
     }
     if (argc != 2) {
         fprintf(stderr, "mcrt: usage: mcrt info SCENE\n");
-        return EXIT_USAGE;
+        return STATUS_USAGE;
     }
     if (!(scene = mcrt_scene_new())) {
         fprintf(stderr, "mcrt: out of memory\n");
-        return EXIT_FAIL;
+        return STATUS_FAIL;
     }
     status = mcrt_scene_load_file(scene, argv[1]);
     if (status != MCRT_OK) {
         fprintf(stderr, "%s\n", mcrt_scene_error(scene));
-        code = status == MCRT_ERR_NOMEM ? EXIT_FAIL : EXIT_USAGE;
+        code = status == MCRT_ERR_NOMEM ? STATUS_FAIL : STATUS_USAGE;
     } else {
         fputs(mcrt_scene_info(scene), stdout);
-        code = fflush(stdout) == 0 ? EXIT_OK : EXIT_FAIL;
+        code = fflush(stdout) == 0 ? STATUS_OK : STATUS_FAIL;
     }
     mcrt_scene_free(scene);
     return code;
@@ -557,46 +554,46 @@ static int cmd_pov(int argc, char **argv)
     mc_args_init(&p, argc, argv);
     while ((opt = mc_args_next(&p, pov_options, &v)) != ARG_END) {
         if (opt == ARG_ERROR)
-            return EXIT_USAGE;
+            return STATUS_USAGE;
         if (opt == POV_HELP) {
             fputs(pov_usage, stdout);
-            return fflush(stdout) == 0 ? EXIT_OK : EXIT_FAIL;
+            return fflush(stdout) == 0 ? STATUS_OK : STATUS_FAIL;
         }
         if (opt == POV_OUTPUT)
             output = v;
         else if (scene_path) {
             fprintf(stderr, "mcrt: more than one scene given ('%s' and '%s')\n", scene_path, v);
-            return EXIT_USAGE;
+            return STATUS_USAGE;
         } else
             scene_path = v;
     }
     if (!scene_path) {
         fprintf(stderr, "mcrt: no scene file given (see mcrt pov --help)\n");
-        return EXIT_USAGE;
+        return STATUS_USAGE;
     }
     if (!output && !(output = owned = default_output(scene_path, "pov"))) {
         fprintf(stderr, "mcrt: out of memory\n");
-        return EXIT_FAIL;
+        return STATUS_FAIL;
     }
     if (same_file(scene_path, output)) {
         fprintf(stderr, "mcrt: refusing to overwrite the scene file '%s'\n", scene_path);
         free(owned);
-        return EXIT_USAGE;
+        return STATUS_USAGE;
     }
     if (!(scene = mcrt_scene_new())) {
         fprintf(stderr, "mcrt: out of memory\n");
         free(owned);
-        return EXIT_FAIL;
+        return STATUS_FAIL;
     }
     status = mcrt_scene_load_file(scene, scene_path);
     if (status != MCRT_OK) { /* a missing or malformed scene is bad input */
         fprintf(stderr, "%s\n", mcrt_scene_error(scene)); /* already "file:line:col: ..." */
-        code = status == MCRT_ERR_NOMEM ? EXIT_FAIL : EXIT_USAGE;
+        code = status == MCRT_ERR_NOMEM ? STATUS_FAIL : STATUS_USAGE;
     } else if ((status = mcrt_scene_export_pov(scene, output)) != MCRT_OK) {
         fprintf(stderr, "mcrt: %s: %s\n", scene_path, mcrt_scene_error(scene));
-        code = status == MCRT_ERR_NOMEM || status == MCRT_ERR_IO ? EXIT_FAIL : EXIT_USAGE;
+        code = status == MCRT_ERR_NOMEM || status == MCRT_ERR_IO ? STATUS_FAIL : STATUS_USAGE;
     } else
-        code = EXIT_OK;
+        code = STATUS_OK;
     mcrt_scene_free(scene);
     free(owned);
     return code;
