@@ -312,9 +312,8 @@ static ALWAYS_INLINE void tri4_test(const struct tri4 *k, const struct tri_ray *
     out->hit = 0;
     if (cand) {
         /* t must exceed mc_tri_t_error's bound (prim.h), computed in the same operations. */
-        const __m128 sign = _mm_set1_ps(-0.0f);
-        const float g2 = 2 * 0x1p-24f / (1 - 2 * 0x1p-24f), g3 = 3 * 0x1p-24f / (1 - 3 * 0x1p-24f),
-                    g5 = 5 * 0x1p-24f / (1 - 5 * 0x1p-24f);
+        const __m128 sign = _mm_set1_ps(-0.0f), g2 = _mm_set1_ps(MC_GAMMA(2)),
+                     g3 = _mm_set1_ps(MC_GAMMA(3)), g5 = _mm_set1_ps(MC_GAMMA(5));
         __m128 t = _mm_div_ps(ts, det);
         __m128 mx = _mm_max_ps(_mm_max_ps(_mm_andnot_ps(sign, ax), _mm_andnot_ps(sign, bx)),
                                _mm_andnot_ps(sign, cx));
@@ -324,16 +323,16 @@ static ALWAYS_INLINE void tri4_test(const struct tri4 *k, const struct tri_ray *
                                _mm_andnot_ps(sign, zs[2]));
         __m128 me = _mm_max_ps(_mm_max_ps(_mm_andnot_ps(sign, e0), _mm_andnot_ps(sign, e1)),
                                _mm_andnot_ps(sign, e2));
-        __m128 dz = _mm_mul_ps(_mm_set1_ps(g3), mz);
-        __m128 dx = _mm_mul_ps(_mm_set1_ps(g5), _mm_add_ps(mx, mz));
-        __m128 dy = _mm_mul_ps(_mm_set1_ps(g5), _mm_add_ps(my, mz));
+        __m128 dz = _mm_mul_ps(g3, mz);
+        __m128 dx = _mm_mul_ps(g5, _mm_add_ps(mx, mz));
+        __m128 dy = _mm_mul_ps(g5, _mm_add_ps(my, mz));
         __m128 de = _mm_mul_ps(_mm_set1_ps(2.0f),
-                               _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_mul_ps(_mm_set1_ps(g2), mx), my),
+                               _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_mul_ps(g2, mx), my),
                                                      _mm_mul_ps(dy, mx)),
                                           _mm_mul_ps(dx, my)));
         __m128 dt = _mm_div_ps(
             _mm_mul_ps(_mm_set1_ps(3.0f),
-                       _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_mul_ps(_mm_set1_ps(g3), me), mz),
+                       _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_mul_ps(g3, me), mz),
                                              _mm_mul_ps(de, mz)),
                                   _mm_mul_ps(dz, me))),
             _mm_andnot_ps(sign, det));
@@ -379,10 +378,9 @@ static ALWAYS_INLINE void tri4_test(const struct tri4 *k, const struct tri_ray *
             continue;
         t = ts / det;
         if (!(t < tmax)
-            || !(t > mc_tri_t_error(f_max(f_max(fabsf(ax), fabsf(bx)), fabsf(cx)),
-                                    f_max(f_max(fabsf(ay), fabsf(by)), fabsf(cy)),
-                                    f_max(f_max(fabsf(zs[0]), fabsf(zs[1])), fabsf(zs[2])),
-                                    f_max(f_max(fabsf(e0), fabsf(e1)), fabsf(e2)), det)))
+            || !(t > mc_tri_t_error(mc_abs_max3(ax, bx, cx), mc_abs_max3(ay, by, cy),
+                                    mc_abs_max3(zs[0], zs[1], zs[2]), mc_abs_max3(e0, e1, e2),
+                                    det)))
             continue;
         out->hit |= 1u << l;
         out->t[l] = t;

@@ -72,10 +72,8 @@ static int intersect_triangle(const struct prim *p, const struct ray_prep *q, st
         return 0;
     t = ts / det;
     if (!accept(t, h)
-        || !(t > mc_tri_t_error(f_max(f_max(fabsf(a.x), fabsf(b.x)), fabsf(c.x)),
-                                f_max(f_max(fabsf(a.y), fabsf(b.y)), fabsf(c.y)),
-                                f_max(f_max(fabsf(a.z), fabsf(b.z)), fabsf(c.z)),
-                                f_max(f_max(fabsf(e0), fabsf(e1)), fabsf(e2)), det))
+        || !(t > mc_tri_t_error(mc_abs_max3(a.x, b.x, c.x), mc_abs_max3(a.y, b.y, c.y),
+                                mc_abs_max3(a.z, b.z, c.z), mc_abs_max3(e0, e1, e2), det))
         || mc_prim_degenerate(p))
         return 0;
     h->t = t;

@@ -89,13 +89,18 @@ static inline void mc_ray_prep(struct ray_prep *q, const struct ray *r)
  * spawned at a concave corner lies in the other face's plane) meets it at t = 0, which rounding
  * turns into a tiny t of either sign. The 4-wide test in bvh.c repeats these operations in the
  * same order, so that both decide alike. */
+#define MC_GAMMA(n) ((n) * 0x1p-24f / (1 - (n) * 0x1p-24f)) /* γn of float rounding (PBR 6.8.1) */
 static inline float mc_tri_t_error(float max_x, float max_y, float max_z, float max_e, float det)
 {
-    const float g2 = 2 * 0x1p-24f / (1 - 2 * 0x1p-24f), g3 = 3 * 0x1p-24f / (1 - 3 * 0x1p-24f),
-                g5 = 5 * 0x1p-24f / (1 - 5 * 0x1p-24f);
-    float dz = g3 * max_z, dx = g5 * (max_x + max_z), dy = g5 * (max_y + max_z);
-    float de = 2.0f * (g2 * max_x * max_y + dy * max_x + dx * max_y);
-    return 3.0f * (g3 * max_e * max_z + de * max_z + dz * max_e) / fabsf(det);
+    float dz = MC_GAMMA(3) * max_z, dx = MC_GAMMA(5) * (max_x + max_z);
+    float dy = MC_GAMMA(5) * (max_y + max_z);
+    float de = 2.0f * (MC_GAMMA(2) * max_x * max_y + dy * max_x + dx * max_y);
+    return 3.0f * (MC_GAMMA(3) * max_e * max_z + de * max_z + dz * max_e) / fabsf(det);
+}
+/* The largest of |a|, |b|, |c|: mc_tri_t_error's magnitudes. */
+static inline float mc_abs_max3(float a, float b, float c)
+{
+    return f_max(f_max(fabsf(a), fabsf(b)), fabsf(c));
 }
 
 /* mc_prim_intersect with the constants precomputed; the results are bitwise the same. */
