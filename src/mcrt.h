@@ -43,6 +43,10 @@ typedef enum mcrt_status {
 const char *mcrt_version(void);
 /* Short English text for a status code. Static string. */
 const char *mcrt_status_string(mcrt_status status);
+/* The integrators, for listing them: the name of integrator number index (from 0), as
+ * mcrt_options.integrator and a scene's integrator method take it, with a one-line description
+ * in *description unless description is NULL; NULL past the last. Static strings. */
+const char *mcrt_integrator(int index, const char **description);
 
 /* ---- Scenes ---- */
 
@@ -79,12 +83,15 @@ typedef struct mcrt_options {
     int spp;                /* samples per pixel; 0 = the scene's */
     int threads;            /* worker threads; 0 = all cores */
     uint64_t seed;          /* the image is a function of (scene, options, seed) only */
-    const char *integrator; /* "path" or "direct"; NULL = the scene's */
+    /* "path", "direct", "mis", "bsdf" or "light" (see mcrt_integrator); NULL = the scene's */
+    const char *integrator;
     /* Nonzero: the general code path, with every feature switched on, instead of the one built
      * for what the scene uses. The image is the same in expectation (for checks and benchmarks). */
     int all_features;
-    /* Called from worker threads after each tile with the fraction done; return nonzero to cancel.
-     * Calls are serialised. NULL = none. */
+    /* Called from worker threads after tiles with the fraction done; return nonzero to cancel.
+     * Calls are serialised but hold no lock of the render, so a slow callback delays only its
+     * own thread: a tile finished meanwhile is reported by that call's thread when it returns.
+     * The fractions of a pass never decrease and end at 1. NULL = none. */
     int (*progress)(void *user, double done);
     void *user;
     /* Extra layers mcrt_render_save writes into an EXR, comma-separated: "variance" (the

@@ -2,7 +2,8 @@
 # docs.sh: the manuals, README and scenes checked against the code. groff lints each page and man
 # renders it; mcrt.5 names every block kind and key of the scene language (the specified ones and
 # those in the parser's tables); mcrt.1 and `mcrt --help` name every option (and mcrt.1 every
-# option --help shows); libmcrt.3 gives every function of src/mcrt.h with the header's exact
+# option --help shows); every integrator of the library's table is named by mcrt.1, mcrt.5,
+# libmcrt.3 and mcrt.h; libmcrt.3 gives every function of src/mcrt.h with the header's exact
 # prototype, every status code and struct field, and an example that compiles; versions agree;
 # every scene renders and the README lists it; the Cornell box shows its red wall on the left.
 # Run from the repository root after the build; $O is the build folder. Prints "ok ..." or
@@ -161,6 +162,25 @@ fields=$(awk '/^typedef struct mcrt_[a-z]+ \{/ { on = 1; next }
     }' src/mcrt.h)
 # shellcheck disable=SC2086
 check_words "libmcrt.3 describes every field of mcrt_options and mcrt_stats" "$body3" $fields
+
+# ---- the integrators: every one of the library's table (mcrt --list integrators) is named by
+# mcrt.1 (--integrator), mcrt.5 (integrator method), libmcrt.3 and mcrt.h's comment on the
+# integrator option ----
+if [ -x "$MCRT" ] && "$MCRT" --list integrators >"$tmp/integrators" 2>&1 && [ -s "$tmp/integrators" ]; then
+    integrators=$(cut -f 1 "$tmp/integrators")
+    # The comment above mcrt_options' integrator field, through the field's line.
+    comment=$(awk '/^ *\/\*/ { c = "" } { c = c " " $0 } /const char \*integrator;/ { print c; exit }' src/mcrt.h)
+    # shellcheck disable=SC2086
+    check_words "mcrt.1 names every integrator" "$t1" $integrators
+    # shellcheck disable=SC2086
+    check_words "mcrt.5 names every integrator method" "$t5" $integrators
+    # shellcheck disable=SC2086
+    check_words "libmcrt.3 names every integrator" "$body3" $integrators
+    # shellcheck disable=SC2086
+    check_words "mcrt.h's comment on mcrt_options.integrator names every integrator" "$comment" $integrators
+else
+    fail "mcrt --list integrators lists nothing: $(head -n 1 "$tmp/integrators" 2>/dev/null)"
+fi
 
 # The EXAMPLES program, as a reader would copy it, compiles against the header.
 printf '%s\n' "$r3" | awk '/^EXAMPLES/ { on = 1 } /^SEE ALSO/ { on = 0 }

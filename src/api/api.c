@@ -13,7 +13,6 @@
 #include "integrator/integrator.h"
 #include "io/image.h"
 #include "render/adaptive.h"
-#include "render/passes.h"
 #include "render/render.h"
 #include "scene/features.h"
 #include "scene/scene.h"
@@ -42,6 +41,15 @@ struct mcrt_render {
 };
 
 const char *mcrt_version(void) { return MCRT_VERSION; }
+
+const char *mcrt_integrator(int index, const char **description)
+{
+    if (index < 0 || index >= INTEGRATOR_COUNT)
+        return NULL;
+    if (description)
+        *description = mc_integrator_get((enum integrator_kind)index)->description;
+    return mc_integrator_name((enum integrator_kind)index);
+}
 
 const char *mcrt_status_string(mcrt_status status)
 {
@@ -287,13 +295,14 @@ static mcrt_status check_aovs(const char *list, mc_diag *d)
     return MCRT_OK;
 }
 
-/* Resolve the options against the scene into render settings, or explain what is wrong. */
-static mcrt_status settings(const mcrt_render *r, struct render_settings *rs, mc_diag *d)
+/* Resolve the options against the scene into render settings and the integrator, or explain
+ * what is wrong. */
+static mcrt_status settings(const mcrt_render *r, struct render_settings *rs,
+                            const struct integrator **it, mc_diag *d)
 {
     const struct scene *s = &r->scene->s;
     const mcrt_options *o = &r->opt;
     enum integrator_kind method = s->integrator.method;
-    enum strategy strategy = s->integrator.strategy;
     if (o->size != sizeof *o)
         return mc_fail(d, MCRT_ERR_INVALID, "mcrt_options not initialised by mcrt_options_init");
     if (o->spp < 0 || o->spp > MAX_SPP)
@@ -301,31 +310,21 @@ static mcrt_status settings(const mcrt_render *r, struct render_settings *rs, mc
     if (o->threads < 0 || o->threads > MAX_THREADS)
         return mc_fail(d, MCRT_ERR_INVALID, "threads must be between 1 and %d, got %d",
                        MAX_THREADS, o->threads);
-    /* "path" and "direct" choose the method; "mis", "bsdf" and "light" the path tracer with that
-     * strategy (the enum's order). */
     if (o->integrator) {
-        static const char *const strategies[] = {"mis", "bsdf", "light"};
-        int i;
-        if (strcmp(o->integrator, "path") == 0)
-            method = INTEGRATOR_PATH;
-        else if (strcmp(o->integrator, "direct") == 0)
-            method = INTEGRATOR_DIRECT;
-        else {
-            for (i = 0; i < 3 && strcmp(o->integrator, strategies[i]) != 0; i++)
-                ;
-            if (i == 3)
-                return mc_fail(d, MCRT_ERR_INVALID,
-                               "unknown integrator '%s' (use path, direct, mis, bsdf or light)",
-                               o->integrator);
-            method = INTEGRATOR_PATH;
-            strategy = (enum strategy)i;
+        int i = mc_integrator_find(o->integrator);
+        if (i < 0) {
+            char choices[256];
+            mc_integrator_choices(choices, sizeof choices);
+            return mc_fail(d, MCRT_ERR_INVALID, "unknown integrator '%s' (use %s)", o->integrator,
+                           choices);
         }
+        method = (enum integrator_kind)i;
     }
+    *it = mc_integrator_get(method);
     rs->spp = o->spp ? o->spp : s->film.spp;
     rs->threads = o->threads ? o->threads : default_threads();
     rs->seed = o->seed;
-    rs->integrator = mc_integrator_config(&s->integrator, method);
-    rs->integrator.strategy = strategy;
+    rs->integrator = s->integrator;
     rs->features = o->all_features ? FEATURE_ALL : mc_scene_features(s);
     rs->progress = o->progress;
     rs->user = o->user;
@@ -361,9 +360,10 @@ static mcrt_status settings(const mcrt_render *r, struct render_settings *rs, mc
 mcrt_status mcrt_render_run(mcrt_render *r)
 {
     struct render_settings rs;
-    struct pass_settings ps;
-    struct pass_result res;
+    struct render_result res;
+    const struct integrator *it = NULL;
     const struct scene *s;
+    void *state = NULL;
     mcrt_status st;
     uint64_t lo, hi;
     size_t n;
@@ -374,7 +374,7 @@ mcrt_status mcrt_render_run(mcrt_render *r)
     if (!r->scene || !r->scene->loaded)
         return mc_fail(&r->err, MCRT_ERR_INVALID, "no scene loaded");
     s = &r->scene->s;
-    st = settings(r, &rs, &r->err);
+    st = settings(r, &rs, &it, &r->err);
     if (st != MCRT_OK)
         return st;
     mc_film_free(&r->film);
@@ -391,18 +391,22 @@ mcrt_status mcrt_render_run(mcrt_render *r)
     rs.pixel_spp = NULL;
     __atomic_store_n(&r->cancel, 0, __ATOMIC_RELAXED);
     rs.cancel = &r->cancel;
-    ps.time_budget = r->opt.time_budget;
-    ps.target_error = r->opt.target_error;
-    ps.max_passes = MAX_SPP / rs.spp;
-    ps.adaptive = r->opt.adaptive != 0;
-    st = mc_render_passes(s, &rs, &ps, &r->film, &res, &r->err);
+    rs.time_budget = r->opt.time_budget;
+    rs.target_error = r->opt.target_error;
+    rs.max_passes = MAX_SPP / rs.spp;
+    rs.adaptive = r->opt.adaptive != 0;
+    if (it->prepare && (st = it->prepare(it, s, &rs, &state, &r->err)) != MCRT_OK)
+        return st;
+    st = it->render(it, state, s, &rs, &r->film, &res, &r->err);
+    if (it->release)
+        it->release(state);
     mc_film_resolve(&r->film, r->rgb);
     r->stats.width = w;
     r->stats.height = h;
     r->stats.passes = res.passes;
     /* The mean samples per pixel (rounded), and the extremes, which adaptive passes spread. */
     r->stats.spp = res.passes > 0 ? (int)((res.samples + n / 2) / n) : rs.spp;
-    r->stats.adaptive = ps.adaptive;
+    r->stats.adaptive = rs.adaptive;
     mc_adaptive_count_range(&r->film, &lo, &hi);
     r->stats.spp_min = res.passes > 0 ? (int)lo : rs.spp;
     r->stats.spp_max = res.passes > 0 ? (int)hi : rs.spp;

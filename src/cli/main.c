@@ -33,9 +33,9 @@ static const char usage[] =
     "  --threads N         worker threads; 0 means one per core (default: 0)\n"
     "  --seed N            random seed, 0 to 2^64-1 (default: 0); the image depends only on\n"
     "                      the scene, the options and the seed, not on the number of threads\n"
-    "  --integrator NAME   path or direct (default: the scene's); or mis, bsdf, light: the path\n"
-    "                      tracer finding light by both strategies weighted by MIS, by BSDF\n"
-    "                      sampling only (point lights unseen), or by light sampling only\n"
+    "  --integrator NAME   the estimator, one of (default: the scene's integrator method):\n";
+/* After the integrators, one line each (print_usage). */
+static const char usage_tail[] =
     "  --all-features      render with the general code path instead of the one built for the\n"
     "                      features the scene uses (the same image in expectation; slower)\n"
     "  --stats FILE        write statistics as JSON (size, spp, threads, seconds, rays, NaNs,\n"
@@ -51,6 +51,7 @@ static const char usage[] =
     "  --adaptive          after a uniform first pass, give each pixel samples in proportion\n"
     "                      to its estimated error; --spp is then the mean per pixel\n"
     "  --sampler NAME      random, stratified or sobol (default: the scene's)\n"
+    "  --list integrators  print the integrators, one a line: name, tab, description\n"
     "  --quiet             print nothing but errors\n"
     "  --help              print this help and exit\n"
     "  --version           print the version and the built-in image formats, and exit\n"
@@ -62,6 +63,49 @@ static const char usage[] =
     "  2  bad input: bad options, a missing or malformed scene, an unsupported image format\n"
     "  130  interrupted (Ctrl-C): the complete passes were written; a second Ctrl-C quits\n"
     "       at once and leaves the output alone\n";
+
+/* --help: the usage with the integrators of the library's table. */
+static int print_usage(void)
+{
+    const char *name, *description;
+    int i;
+    fputs(usage, stdout);
+    for (i = 0; (name = mcrt_integrator(i, &description)); i++)
+        printf("                      %-6s %s\n", name, description);
+    fputs(usage_tail, stdout);
+    return fflush(stdout) == 0 ? STATUS_OK : STATUS_FAIL;
+}
+
+/* --list integrators: the same table for scripts (tests/docs.sh). */
+static int print_list(const char *what)
+{
+    const char *name, *description;
+    int i;
+    if (strcmp(what, "integrators") != 0) {
+        fprintf(stderr, "mcrt: --list: expected integrators, got '%s'\n", what);
+        return STATUS_USAGE;
+    }
+    for (i = 0; (name = mcrt_integrator(i, &description)); i++)
+        printf("%s\t%s\n", name, description);
+    return fflush(stdout) == 0 ? STATUS_OK : STATUS_FAIL;
+}
+
+/* Whether name is an integrator of the library; if not, say which are. */
+static int check_integrator(const char *name)
+{
+    const char *n, *next;
+    int i;
+    for (i = 0; (n = mcrt_integrator(i, NULL)); i++)
+        if (strcmp(n, name) == 0)
+            return 1;
+    fprintf(stderr, "mcrt: --integrator: expected ");
+    for (i = 0, n = mcrt_integrator(0, NULL); n; n = next) {
+        next = mcrt_integrator(++i, NULL);
+        fprintf(stderr, "%s%s", i == 1 ? "" : next ? ", " : " or ", n);
+    }
+    fprintf(stderr, ", got '%s'\n", name);
+    return 0;
+}
 
 /* Image formats, for --version and for explaining a format this build lacks. */
 static const struct {
@@ -176,8 +220,8 @@ static void format_time(char *buf, size_t size, double seconds)
         snprintf(buf, size, "%ld:%02ld", s / 60, s % 60);
 }
 
-/* The render's progress callback: called after each tile from worker threads, one call at a
- * time, so the state needs no lock. Redraws at most 10 times a second, plus once at the end. */
+/* The render's progress callback: called after tiles from worker threads, one call at a time,
+ * so the state needs no lock. Redraws at most 10 times a second, plus once at the end. */
 static int on_progress(void *user, double done)
 {
     static const char bar[] = "##############################";
@@ -209,7 +253,7 @@ static void progress_clear(struct progress *p)
 
 enum { OPT_OUTPUT, OPT_SPP, OPT_THREADS, OPT_SEED, OPT_INTEGRATOR, OPT_ALL_FEATURES, OPT_STATS,
        OPT_QUIET, OPT_HELP, OPT_VERSION, OPT_AOV, OPT_CROP, OPT_TIME, OPT_TARGET_ERROR,
-       OPT_ADAPTIVE, OPT_SAMPLER, OPT_END };
+       OPT_ADAPTIVE, OPT_SAMPLER, OPT_LIST, OPT_END };
 static const struct arg_spec render_options[OPT_END + 1] = {
     [OPT_OUTPUT] = {NULL, 'o', 1},        [OPT_SPP] = {"spp", 0, 1},
     [OPT_THREADS] = {"threads", 0, 1},    [OPT_SEED] = {"seed", 0, 1},
@@ -219,7 +263,8 @@ static const struct arg_spec render_options[OPT_END + 1] = {
     [OPT_VERSION] = {"version", 0, 0},    [OPT_AOV] = {"aov", 0, 1},
     [OPT_CROP] = {"crop", 0, 1},          [OPT_TIME] = {"time", 0, 1},
     [OPT_TARGET_ERROR] = {"target-error", 0, 1}, [OPT_ADAPTIVE] = {"adaptive", 0, 0},
-    [OPT_SAMPLER] = {"sampler", 0, 1},    [OPT_END] = {NULL, 0, 0}};
+    [OPT_SAMPLER] = {"sampler", 0, 1},    [OPT_LIST] = {"list", 0, 1},
+    [OPT_END] = {NULL, 0, 0}};
 
 struct render_args {
     const char *scene, *output, *stats, *integrator, *aovs, *sampler;
@@ -264,12 +309,8 @@ static int parse_render_args(int argc, char **argv, struct render_args *a)
                 return STATUS_USAGE;
             break;
         case OPT_INTEGRATOR:
-            if (strcmp(v, "path") != 0 && strcmp(v, "direct") != 0 && strcmp(v, "mis") != 0
-                && strcmp(v, "bsdf") != 0 && strcmp(v, "light") != 0) {
-                fprintf(stderr, "mcrt: --integrator: expected path, direct, mis, bsdf or light, got "
-                                "'%s'\n", v);
+            if (!check_integrator(v))
                 return STATUS_USAGE;
-            }
             a->integrator = v;
             break;
         case OPT_ALL_FEATURES:
@@ -309,8 +350,9 @@ static int parse_render_args(int argc, char **argv, struct render_args *a)
             a->quiet = 1;
             break;
         case OPT_HELP:
-            fputs(usage, stdout);
-            return fflush(stdout) == 0 ? STATUS_OK : STATUS_FAIL;
+            return print_usage();
+        case OPT_LIST:
+            return print_list(v);
         case OPT_VERSION:
             return print_version();
         }
@@ -500,10 +542,8 @@ static int cmd_info(int argc, char **argv)
     mcrt_scene *scene;
     mcrt_status status;
     int code;
-    if (argc == 2 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0)) {
-        fputs(usage, stdout);
-        return fflush(stdout) == 0 ? STATUS_OK : STATUS_FAIL;
-    }
+    if (argc == 2 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0))
+        return print_usage();
     if (argc != 2) {
         fprintf(stderr, "mcrt: usage: mcrt info SCENE\n");
         return STATUS_USAGE;

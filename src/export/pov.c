@@ -27,11 +27,22 @@ static const double PI = 3.14159265358979323846;
 
 /* ---- what POV-Ray can reproduce ---- */
 
-/* Diffuse interreflection is part of the image: a path integrator allowing a second bounce. */
+/* Diffuse interreflection is part of the image: a path integrator allowing a second bounce
+ * (direct stops after one). */
 static int has_gi(const struct scene *s)
 {
     const struct integrator_desc *it = &s->integrator;
-    return it->method == INTEGRATOR_PATH && (it->max_depth < 0 || it->max_depth >= 2);
+    return it->method != INTEGRATOR_DIRECT && (it->max_depth < 0 || it->max_depth >= 2);
+}
+
+/* The methods that are the path tracer (integrators list, scene/integrators.h), whose image
+ * POV-Ray's radiosity and lights reproduce; an integrator added to the list is refused until it
+ * is mapped here. */
+static int path_traced(const struct scene *s)
+{
+    enum integrator_kind k = s->integrator.method;
+    return k == INTEGRATOR_PATH || k == INTEGRATOR_DIRECT || k == INTEGRATOR_MIS
+           || k == INTEGRATOR_BSDF || k == INTEGRATOR_LIGHT;
 }
 
 static int is_emitter(const struct prim *p) { return !v3_is_zero(p->emit); }
@@ -125,6 +136,8 @@ mcrt_status mc_pov_check(const struct scene *s, mc_diag *d)
         return refuse(d, "the environment light", "a constant sky has no verified POV-Ray mapping");
     if (s->integrator.max_depth == 0)
         return refuse(d, "max_depth 0", "POV-Ray always lights the surfaces it sees");
+    if (!path_traced(s))
+        return refuse(d, "this integrator method", "only the path tracer's have a mapping");
     for (i = 0; i < s->prim_count; i++) {
         const struct prim *p = &s->prims[i];
         const struct material *m = &s->materials[p->material];

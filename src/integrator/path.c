@@ -1,22 +1,12 @@
-/* path.c: the path tracer (see integrator.h), after pbrt-v4's PathIntegrator::Li, compiled once
- * per combination of the features that change its code (scene/features.h). */
+/* path.c: the path tracer, after pbrt-v4's PathIntegrator::Li, compiled once per combination
+ * of the features that change its code (scene/features.h); and the integrators that are the path
+ * tracer with fixed parameters: direct, and the strategies mis, bsdf and light. */
 #include "integrator/integrator.h"
 
 #include <limits.h>
 
 #include "bsdf/bsdf.h"
-
-struct integrator_desc mc_integrator_config(const struct integrator_desc *scene_desc,
-                                            enum integrator_kind method)
-{
-    struct integrator_desc c = *scene_desc;
-    c.method = method;
-    if (method == INTEGRATOR_DIRECT) {
-        c.max_depth = 1;
-        c.rr_depth = INT_MAX;
-    }
-    return c;
-}
+#include "scene/features.h"
 
 /* Veach's power heuristic with β = 2 for the strategy with pdf a against one with pdf b, each pdf
  * already multiplied by its number of samples (Veach 1997, eq. 9.13). */
@@ -219,12 +209,57 @@ KERNEL(path_motion_mis, FEATURE_MOTION | FEATURE_AREA_LIGHTS)
 KERNEL(path_motion_delta_n, FEATURE_MOTION | FEATURE_LIGHT_SAMPLES)
 KERNEL(path_general, FEATURE_ALL)
 
-mc_path_fn mc_path_kernel(unsigned features)
+static mc_radiance_fn path_kernel(unsigned features)
 {
     unsigned key = (features & FEATURE_MOTION ? 4u : 0u) | (mc_features_need_mis(features) ? 2u : 0u)
                    | (features & FEATURE_LIGHT_SAMPLES ? 1u : 0u);
-    static const mc_path_fn table[8] = {path_delta,        path_delta_n,        path_mis,
-                                        path_mis_n,        path_motion_delta,   path_motion_delta_n,
-                                        path_motion_mis,   path_general};
+    static const mc_radiance_fn table[8] = {path_delta,        path_delta_n,        path_mis,
+                                            path_mis_n,        path_motion_delta,   path_motion_delta_n,
+                                            path_motion_mis,   path_general};
     return table[key];
 }
+
+/* Unidirectional path tracing with next-event estimation (integrator_desc.light_samples shadow
+ * rays per non-delta hit) and multiple importance sampling (Veach 1997, ch. 9, power heuristic
+ * β = 2) between BSDF sampling and light sampling, and Russian roulette after rr_depth bounces.
+ * Unbiased. The scene's parameters as they are. */
+const struct integrator mc_integrator_path = MC_RAY_INTEGRATOR(
+    "path tracing, the scene's strategy (by default MIS)", NULL, path_kernel);
+
+/* `direct` is the path tracer stopped after one bounce (emitted light plus direct lighting at the
+ * first hit, with the same MIS), so that the two can never disagree on what they share. */
+static mcrt_status direct_prepare(const struct integrator *self, const struct scene *s,
+                                  struct render_settings *rs, void **state, mc_diag *d)
+{
+    (void)self;
+    (void)s;
+    (void)state;
+    (void)d;
+    rs->integrator.max_depth = 1;
+    rs->integrator.rr_depth = INT_MAX;
+    return MCRT_OK;
+}
+const struct integrator mc_integrator_direct = MC_RAY_INTEGRATOR(
+    "emission plus direct lighting at the first hit", direct_prepare, path_kernel);
+
+/* The path tracer with one way of finding light, whatever the scene's strategy: both weighted
+ * by MIS, BSDF sampling only, or light sampling only (for measuring them). */
+static mcrt_status strategy_prepare(const struct integrator *self, const struct scene *s,
+                                    struct render_settings *rs, void **state, mc_diag *d)
+{
+    (void)s;
+    (void)state;
+    (void)d;
+    rs->integrator.strategy = self == &mc_integrator_bsdf    ? STRATEGY_BSDF
+                              : self == &mc_integrator_light ? STRATEGY_LIGHT
+                                                             : STRATEGY_MIS;
+    return MCRT_OK;
+}
+const struct integrator mc_integrator_mis = MC_RAY_INTEGRATOR(
+    "path tracing, BSDF and light sampling under MIS", strategy_prepare,
+    path_kernel);
+const struct integrator mc_integrator_bsdf = MC_RAY_INTEGRATOR(
+    "path tracing by BSDF sampling (point lights unseen)", strategy_prepare,
+    path_kernel);
+const struct integrator mc_integrator_light = MC_RAY_INTEGRATOR(
+    "path tracing by light sampling only", strategy_prepare, path_kernel);

@@ -1,49 +1,30 @@
-/* render.c: the tile queue and the worker threads (see render.h). */
+/* render.c: the per-ray pass (see render.h): camera samples, filter importance sampling, AOVs and
+ * the NaN count around a radiance function, specialised for the camera's features. */
 #include "render/render.h"
 
-#include <pthread.h>
-#include <stdlib.h>
-#include <time.h>
-
 #include "camera/camera.h"
-#include "integrator/integrator.h"
 #include "sample/filter.h"
 #include "sample/sampler.h"
-
-enum { TILE = 16 };
+#include "scene/features.h"
 
 struct job;
-struct worker;
-typedef void (*tile_fn)(struct job *j, int x0, int y0, int x1, int y1, struct worker *w);
+typedef void (*tile_kernel_fn)(struct job *j, int x0, int y0, int x1, int y1,
+                               struct tile_worker *w);
 
 struct job {
     const struct scene *scene;
     const struct render_settings *rs;
     struct film *film;
     struct camera camera;
-    tile_fn tile;                     /* specialised for the scene's features */
-    mc_path_fn path;
+    tile_kernel_fn tile;              /* specialised for the scene's features */
+    mc_radiance_fn Li;
     int x0, y0;                       /* the film's origin in the image (render_settings crop) */
-    int tiles_x, tile_count;
-    pthread_mutex_t lock;   /* guards next_tile, tiles_done and the progress callback */
-    int next_tile, tiles_done;
 };
 
-/* Per-thread counters, each on its own cache lines so that workers never share one. */
-struct worker {
-    struct job *job;
-    uint64_t rays, nans;
-    char pad[64];
-};
-
-static int cancelled(const struct job *j)
-{
-    return j->rs->cancel && __atomic_load_n(j->rs->cancel, __ATOMIC_RELAXED);
-}
-
-/* The samples of pixel (x, y) of the image (the film may be a crop of it). F (the features that change camera rays) is a constant in each
- * instantiation below, so a pinhole camera in a still scene draws neither lens nor time samples. */
-static inline void render_pixel(struct job *j, struct worker *w, int x, int y, unsigned F)
+/* The samples of pixel (x, y) of the image (the film may be a crop of it). F (the features that
+ * change camera rays) is a constant in each instantiation below, so a pinhole camera in a still
+ * scene draws neither lens nor time samples. */
+static inline void render_pixel(struct job *j, struct tile_worker *w, int x, int y, unsigned F)
 {
     const struct render_settings *rs = j->rs;
     struct film_pixel *px = &j->film->pixels[(size_t)(y - j->y0) * (size_t)j->film->width
@@ -67,7 +48,7 @@ static inline void render_pixel(struct job *j, struct worker *w, int x, int y, u
             mc_camera_at_time(&j->camera, &r, mc_camera_time(&j->camera, mc_sampler_1d(&smp)));
         if (rs->aov)
             mc_aov_record(&rs->aov->pixels[px - j->film->pixels], j->scene, &r);
-        L = j->path(j->scene, &rs->integrator, r, &smp, &w->rays);
+        L = j->Li(j->scene, &rs->integrator, r, &smp, &w->rays);
         if (v3_is_finite(L))
             mc_film_add(px, L);
         else
@@ -76,7 +57,7 @@ static inline void render_pixel(struct job *j, struct worker *w, int x, int y, u
 }
 
 #define TILE_KERNEL(name, F)                                                                   \
-    static void name(struct job *j, int x0, int y0, int x1, int y1, struct worker *w)          \
+    static void name(struct job *j, int x0, int y0, int x1, int y1, struct tile_worker *w)     \
     {                                                                                          \
         int x, y;                                                                              \
         for (y = y0; y < y1; y++)                                                              \
@@ -88,61 +69,23 @@ TILE_KERNEL(tile_lens, FEATURE_LENS)
 TILE_KERNEL(tile_pinhole_motion, FEATURE_MOTION)
 TILE_KERNEL(tile_lens_motion, FEATURE_LENS | FEATURE_MOTION)
 
-static tile_fn tile_kernel(unsigned features)
+static tile_kernel_fn tile_kernel(unsigned features)
 {
-    static const tile_fn table[4] = {tile_pinhole, tile_lens, tile_pinhole_motion, tile_lens_motion};
+    static const tile_kernel_fn table[4] = {tile_pinhole, tile_lens, tile_pinhole_motion,
+                                            tile_lens_motion};
     return table[(features & FEATURE_LENS ? 1 : 0) | (features & FEATURE_MOTION ? 2 : 0)];
 }
 
-static void render_tile(struct job *j, int tile, struct worker *w)
+static void render_tile(void *ctx, struct tile_worker *w, int x0, int y0, int x1, int y1)
 {
-    int x0 = j->x0 + (tile % j->tiles_x) * TILE, y0 = j->y0 + (tile / j->tiles_x) * TILE;
-    int x1 = x0 + TILE < j->x0 + j->film->width ? x0 + TILE : j->x0 + j->film->width;
-    int y1 = y0 + TILE < j->y0 + j->film->height ? y0 + TILE : j->y0 + j->film->height;
+    struct job *j = ctx;
     j->tile(j, x0, y0, x1, y1, w);
 }
 
-static void *work(void *arg)
-{
-    struct worker *w = arg;
-    struct job *j = w->job;
-    for (;;) {
-        int tile;
-        if (cancelled(j))
-            break;
-        pthread_mutex_lock(&j->lock);
-        tile = j->next_tile < j->tile_count ? j->next_tile++ : -1;
-        pthread_mutex_unlock(&j->lock);
-        if (tile < 0)
-            break;
-        render_tile(j, tile, w);
-        pthread_mutex_lock(&j->lock);
-        j->tiles_done++;
-        if (j->rs->progress && j->rs->progress(j->rs->user, (double)j->tiles_done / j->tile_count)
-            && j->rs->cancel)
-            __atomic_store_n(j->rs->cancel, 1, __ATOMIC_RELAXED);
-        pthread_mutex_unlock(&j->lock);
-    }
-    return NULL;
-}
-
-static double now_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-mcrt_status mc_render(const struct scene *s, const struct render_settings *rs, struct film *f,
-                      struct render_result *out, mc_diag *d)
+mcrt_status mc_render_rays(const struct scene *s, const struct render_settings *rs,
+                           mc_radiance_fn Li, struct film *f, struct tile_result *out, mc_diag *d)
 {
     struct job j;
-    struct worker *workers;
-    pthread_t *threads;
-    int i, running;
-    double t0 = now_seconds();
-    out->rays = out->nan_count = 0;
-    out->cancelled = 0;
     j.scene = s;
     j.rs = rs;
     j.film = f;
@@ -150,36 +93,6 @@ mcrt_status mc_render(const struct scene *s, const struct render_settings *rs, s
     j.x0 = rs->crop_x0;
     j.y0 = rs->crop_y0;
     j.tile = tile_kernel(rs->features);
-    j.path = mc_path_kernel(rs->features);
-    j.tiles_x = (f->width + TILE - 1) / TILE;
-    j.tile_count = j.tiles_x * ((f->height + TILE - 1) / TILE);
-    j.next_tile = j.tiles_done = 0;
-    workers = calloc((size_t)rs->threads, sizeof *workers);
-    threads = calloc((size_t)rs->threads, sizeof *threads);
-    if (!workers || !threads || pthread_mutex_init(&j.lock, NULL) != 0) {
-        free(workers);
-        free(threads);
-        return mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
-    }
-    /* The calling thread works too, as worker 0. If a thread cannot be started the render goes
-     * on with fewer: the image is the same, only slower. */
-    workers[0].job = &j;
-    for (running = 1; running < rs->threads; running++) {
-        workers[running].job = &j;
-        if (pthread_create(&threads[running], NULL, work, &workers[running]) != 0)
-            break;
-    }
-    work(&workers[0]);
-    for (i = 1; i < running; i++)
-        pthread_join(threads[i], NULL);
-    for (i = 0; i < running; i++) {
-        out->rays += workers[i].rays;
-        out->nan_count += workers[i].nans;
-    }
-    pthread_mutex_destroy(&j.lock);
-    free(workers);
-    free(threads);
-    out->seconds = now_seconds() - t0;
-    out->cancelled = j.tiles_done < j.tile_count;
-    return out->cancelled ? MCRT_ERR_CANCELLED : MCRT_OK;
+    j.Li = Li;
+    return mc_tiles_run(rs, j.x0, j.y0, f->width, f->height, render_tile, &j, out, d);
 }

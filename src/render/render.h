@@ -1,17 +1,21 @@
-/* render.h: rendering a prepared scene into a film with a pool of threads over image tiles. */
+/* render.h: what a render is asked for (the options resolved against the scene) and what it
+ * reports, which every integrator's render takes and fills (integrator/integrator.h); and the
+ * per-ray pass, pbrt-v4's RayIntegrator: camera samples of every pixel, each given to a radiance
+ * function, the shared image loop of the integrators that estimate one camera ray at a time. */
 #ifndef MCRT_RENDER_H
 #define MCRT_RENDER_H
 
 #include "core/diag.h"
 #include "render/aov.h"
 #include "render/film.h"
+#include "render/tiles.h"
 #include "scene/scene.h"
 
 struct render_settings {
     int spp;
     int threads;                      /* >= 1 */
     uint64_t seed;
-    struct integrator_desc integrator;
+    struct integrator_desc integrator; /* the parameters, as the integrator's prepare left them */
     unsigned features;                /* scene/features.h: what the render is built for */
     int (*progress)(void *user, double done); /* serialised; nonzero return cancels */
     void *user;
@@ -24,19 +28,36 @@ struct render_settings {
     /* Film-sized samples of each pixel (render/adaptive.h), in place of spp everywhere; NULL:
      * spp each. A pixel's n samples are a complete n-sample set of the sampler. */
     const int *pixel_spp;
+    /* Progressive passes (render/passes.h). */
+    double time_budget;               /* seconds; 0 = none */
+    double target_error;              /* stop when mc_film_est_relmse falls to this; 0 = none */
+    int max_passes;                   /* >= 1: never more (the spp limit) */
+    /* Nonzero: after a uniform first pass, each pass spreads its samples over the pixels by
+     * their estimated error (render/adaptive.h). Without a budget or a target, spp is then the
+     * mean samples per pixel of the whole render, spent in passes of mc_adaptive_pass_spp. */
+    int adaptive;
 };
 
 struct render_result {
+    int passes;                       /* complete passes in the film */
+    uint64_t samples;                 /* camera samples in the film, over all pixels */
     double seconds;
     uint64_t rays;
     uint64_t nan_count;               /* non-finite samples: counted, never added */
-    int cancelled;
 };
 
-/* Render scene s into film f (already sized). Tiles of 16×16 pixels are taken by the threads from
- * a shared counter; each pixel's samples depend only on (seed, pixel, sample index), so the film is
- * bit-identical for any thread count. Returns MCRT_ERR_CANCELLED when stopped early. */
-mcrt_status mc_render(const struct scene *s, const struct render_settings *rs, struct film *f,
-                      struct render_result *out, mc_diag *d);
+/* The radiance arriving along camera ray r, the whole of a per-ray integrator: with the
+ * integrator's parameters cfg, drawing its numbers from smp, adding the rays it traced to *rays.
+ * A non-finite result is counted and dropped by the caller. */
+typedef vec3 (*mc_radiance_fn)(const struct scene *s, const struct integrator_desc *cfg,
+                               struct ray r, struct sampler *smp, uint64_t *rays);
+
+/* One pass of a per-ray integrator: rs->spp samples (or rs->pixel_spp) of each pixel of film f
+ * (already sized, rs's crop of the image), each a camera ray given to Li, on the tile pool
+ * (tiles.h). Each pixel's samples depend only on (seed, pixel, sample index), so the film is
+ * bit-identical for any thread count. Returns MCRT_ERR_CANCELLED when stopped early (f then
+ * holds the finished tiles). */
+mcrt_status mc_render_rays(const struct scene *s, const struct render_settings *rs,
+                           mc_radiance_fn Li, struct film *f, struct tile_result *out, mc_diag *d);
 
 #endif

@@ -524,7 +524,9 @@ static const struct token *latest(const struct block *b, int n, const int *keys)
 
 static const char *const sampler_names[] = {"random", "stratified", "sobol", NULL};
 static const char *const filter_names[] = {"box", "tent", "gaussian", NULL};
-static const char *const method_names[] = {"path", "direct", NULL};
+#define MC_INTEGRATOR_NAME(id, name) #name,
+static const char *const method_names[] = {MC_INTEGRATORS(MC_INTEGRATOR_NAME) NULL};
+#undef MC_INTEGRATOR_NAME
 static const char *const strategy_names[] = {"mis", "bsdf", "light", NULL};
 
 enum { FILM_WIDTH, FILM_HEIGHT, FILM_SPP, FILM_SAMPLER, FILM_FILTER };

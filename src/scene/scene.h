@@ -14,8 +14,11 @@
 #include "sample/alias.h"
 #include "sample/filter.h"   /* enum filter_kind */
 #include "sample/sampler.h"  /* enum sampler_kind */
+#include "scene/integrators.h"
 
-enum integrator_kind { INTEGRATOR_PATH, INTEGRATOR_DIRECT };
+#define MC_INTEGRATOR_ENUM(id, name) INTEGRATOR_##id,
+enum integrator_kind { MC_INTEGRATORS(MC_INTEGRATOR_ENUM) INTEGRATOR_COUNT };
+#undef MC_INTEGRATOR_ENUM
 /* How the path tracer finds light: both ways weighted by MIS, or one way only (for measuring). */
 enum strategy { STRATEGY_MIS, STRATEGY_BSDF, STRATEGY_LIGHT };
 enum material_kind { MATERIAL_DIFFUSE, MATERIAL_MIRROR, MATERIAL_GLASS, MATERIAL_METAL, MATERIAL_PLASTIC };

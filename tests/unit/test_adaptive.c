@@ -9,7 +9,6 @@
 
 #include "integrator/integrator.h"
 #include "render/adaptive.h"
-#include "render/passes.h"
 #include "scene/features.h"
 #include "scene/scene.h"
 #include "t.h"
@@ -136,7 +135,8 @@ static int rig_init(struct rig *g)
     }
     memset(&g->rs, 0, sizeof g->rs);
     g->rs.threads = 2;
-    g->rs.integrator = mc_integrator_config(&g->s.integrator, g->s.integrator.method);
+    g->rs.integrator = g->s.integrator;
+    g->rs.max_passes = 1;
     g->rs.features = mc_scene_features(&g->s);
     g->rs.sampler = g->s.film.sampler;
     return 0;
@@ -145,17 +145,15 @@ static int rig_init(struct rig *g)
 /* Render into f (allocated here) with spp samples per pixel in all, adaptively or not. */
 static int render(struct rig *g, struct film *f, uint64_t seed, int spp, int adaptive, int threads)
 {
-    struct pass_settings ps;
-    struct pass_result res;
+    const struct integrator *it = mc_integrator_get(INTEGRATOR_PATH);
+    struct render_result res;
     mc_diag d;
-    memset(&ps, 0, sizeof ps);
-    ps.max_passes = 1;
-    ps.adaptive = adaptive;
+    g->rs.adaptive = adaptive;
     g->rs.seed = seed;
     g->rs.spp = spp;
     g->rs.threads = threads;
     if (mc_film_init(f, g->s.film.width, g->s.film.height) != 0
-        || mc_render_passes(&g->s, &g->rs, &ps, f, &res, &d) != MCRT_OK) {
+        || it->render(it, NULL, &g->s, &g->rs, f, &res, &d) != MCRT_OK) {
         printf("render: %s\n", d.msg);
         return -1;
     }
