@@ -68,10 +68,12 @@ static const char usage_tail[] =
 static int print_usage(void)
 {
     const char *name, *description;
-    int i;
+    int i, width = 0;
     fputs(usage, stdout);
+    for (i = 0; (name = mcrt_integrator(i, NULL)); i++)
+        width = (int)strlen(name) > width ? (int)strlen(name) : width;
     for (i = 0; (name = mcrt_integrator(i, &description)); i++)
-        printf("                      %-6s %s\n", name, description);
+        printf("                      %-*s  %s\n", width, name, description);
     fputs(usage_tail, stdout);
     return fflush(stdout) == 0 ? STATUS_OK : STATUS_FAIL;
 }
