@@ -140,10 +140,11 @@ check:
 	  OPT="-O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all" \
 	  LDFLAGS="-fsanitize=address,undefined" test
 
-# ThreadSanitizer: tests/stiff/tsan.sh renders every scene with 4 threads (TSan needs -O1+ and no ASan).
+# ThreadSanitizer: tests/stiff/tsan.sh renders every scene with 4 threads and runs test_tiles (the
+# progress callback across threads) (TSan needs -O1+ and no ASan).
 tsan:
 	@$(MAKE) --no-print-directory O=build-tsan SETUP=0 OPT="-O1 -g -fsanitize=thread" \
-	  LDFLAGS="-fsanitize=thread" all
+	  LDFLAGS="-fsanitize=thread" all build-tsan/tests/test_tiles
 	@O=build-tsan sh tests/stiff/tsan.sh
 
 # libFuzzer harnesses (tests/fuzz/fuzz_*.c), run in parallel for FUZZ_TIME seconds each, starting

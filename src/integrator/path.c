@@ -213,8 +213,9 @@ static mc_radiance_fn path_kernel(unsigned features)
 {
     unsigned key = (features & FEATURE_MOTION ? 4u : 0u) | (mc_features_need_mis(features) ? 2u : 0u)
                    | (features & FEATURE_LIGHT_SAMPLES ? 1u : 0u);
-    static const mc_radiance_fn table[8] = {path_delta,        path_delta_n,        path_mis,
-                                            path_mis_n,        path_motion_delta,   path_motion_delta_n,
+    static const mc_radiance_fn table[8] = {path_delta,        path_delta_n,
+                                            path_mis,          path_mis_n,
+                                            path_motion_delta, path_motion_delta_n,
                                             path_motion_mis,   path_general};
     return table[key];
 }
@@ -256,10 +257,8 @@ static mcrt_status strategy_prepare(const struct integrator *self, const struct 
     return MCRT_OK;
 }
 const struct integrator mc_integrator_mis = MC_RAY_INTEGRATOR(
-    "path tracing, BSDF and light sampling under MIS", strategy_prepare,
-    path_kernel);
+    "path tracing, BSDF and light sampling under MIS", strategy_prepare, path_kernel);
 const struct integrator mc_integrator_bsdf = MC_RAY_INTEGRATOR(
-    "path tracing by BSDF sampling (point lights unseen)", strategy_prepare,
-    path_kernel);
+    "path tracing by BSDF sampling (point lights unseen)", strategy_prepare, path_kernel);
 const struct integrator mc_integrator_light = MC_RAY_INTEGRATOR(
     "path tracing by light sampling only", strategy_prepare, path_kernel);

@@ -1,8 +1,9 @@
 #!/bin/sh
 # tsan.sh: run by `make tsan` on a ThreadSanitizer build ($O/mcrt): renders every scene in scenes/
-# and tests/stiff/ with 4 threads (more threads than cores, so tiles interleave) at 2 spp, and
-# fails on any ThreadSanitizer report or failed render. Not part of `make test` (it needs its own
-# build). Prints "ok ..." or "FAIL ...: why" per scene, then "N passed, N failed".
+# and tests/stiff/ with 4 threads (more threads than cores, so tiles interleave) at 2 spp, runs
+# test_tiles (the progress callback), and fails on any ThreadSanitizer report or failed render.
+# Not part of `make test` (it needs its own build). Prints "ok ..." or "FAIL ...: why" per scene,
+# then "N passed, N failed".
 O=${O:-build-tsan}
 . tests/harness.sh.inc
 # halt_on_error: the first race ends the run with exitcode 66, so a race cannot pass unnoticed.
@@ -18,4 +19,12 @@ for scene in scenes/*.mcrt tests/stiff/*.mcrt; do
         head -n 30 "$tmp/err"
     fi
 done
+# The command line shows no progress bar without a terminal: the progress callback's threads
+# are exercised by test_tiles (2 threads, a slow callback).
+if "$O/tests/test_tiles" >"$tmp/out" 2>"$tmp/err" && ! grep -q "ThreadSanitizer" "$tmp/err"; then
+    ok "test_tiles"
+else
+    fail "test_tiles" "$(tail -n 1 "$tmp/out")"
+    head -n 30 "$tmp/err"
+fi
 finish
