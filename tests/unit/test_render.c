@@ -1,6 +1,7 @@
 /* test_render.c: whole renders through the public API against closed-form answers:
  * a Lambertian plane under a point light, the white furnace, the emitting-sphere furnace
- * Le/(1−ρ), path vs direct where only direct light exists, and thread-count determinism.
+ * Le/(1−ρ), path vs direct where only direct light exists, thread-count determinism, and each
+ * integrator named by the scene or by the options alike.
  * Tolerances come from the noise: the standard error of a region's mean is estimated from the
  * spread of its pixel means (pixels are independent), and a region passes within 4 standard
  * errors (two-sided p ≈ 6e-5 per check). */
@@ -205,6 +206,35 @@ static void test_thread_determinism(void)
     free(b.rgb);
 }
 
+/* Every integrator of the table is the same word in a scene and in the options: the scene's
+ * `integrator { method NAME }` and mcrt_options.integrator = NAME give the same bits. */
+static void test_method_is_option(void)
+{
+    const char *scene = "film { width 24 height 16 spp 4 }\n"
+                        "material mirror { mirror 0.9 }\n"
+                        "sphere { center -1 0 0 material mirror }\n"
+                        "quad { corner -5 -1 5 edge1 10 0 0 edge2 0 0 -10 }\n"
+                        "sphere { center 0 4 0 radius 0.5 emit 10 }\n"
+                        "point_light { position 2 3 2 intensity 5 }\n";
+    const char *name;
+    int i;
+    for (i = 0; (name = mcrt_integrator(i, NULL)); i++) {
+        char text[1024];
+        struct img a, b;
+        snprintf(text, sizeof text, "integrator { method %s }\n%s", name, scene);
+        if (render(text, 0, 2, NULL, &a) != 0 || render(scene, 0, 2, name, &b) != 0) {
+            T_CHECK(0, "%s: render failed", name);
+            continue;
+        }
+        T_CHECK(a.w == b.w && a.h == b.h
+                    && memcmp(a.rgb, b.rgb, (size_t)a.w * a.h * 3 * sizeof(float)) == 0,
+                "method %s and --integrator %s differ", name, name);
+        free(a.rgb);
+        free(b.rgb);
+    }
+    T_CHECK(i >= 5 && !mcrt_integrator(-1, NULL), "%d integrators", i);
+}
+
 int main(void)
 {
     test_point_light_plane();
@@ -212,5 +242,6 @@ int main(void)
     test_emitting_sphere_furnace();
     test_path_equals_direct();
     test_thread_determinism();
+    test_method_is_option();
     return t_done();
 }
