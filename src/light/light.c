@@ -6,20 +6,8 @@
 #include "light/light.h"
 
 #include "sample/warp.h"
-#include "scene/scene.h"
 
-/* Radius of a sphere bounding the scene (moving primitives over the whole shutter): the
- * environment's power is that of a disk of this radius receiving its radiance (pbrt-v4,
- * UniformInfiniteLight::Phi). */
-static float scene_radius(const struct scene *s)
-{
-    struct aabb b = aabb_union(s->bvh.bounds, s->motion_bvh.bounds);
-    if (!(b.hi.x >= b.lo.x))
-        return 1.0f;
-    return fmaxf(0.5f * v3_length(v3_sub(b.hi, b.lo)), 1e-6f);
-}
-
-double mc_light_power(const struct scene *s, const struct light *l)
+double mc_light_power(const struct light_scene *s, const struct light *l)
 {
     switch (l->kind) {
     case LIGHT_POINT:
@@ -29,10 +17,9 @@ double mc_light_power(const struct scene *s, const struct light *l)
         float sides = (p->flags & PRIM_TWO_SIDED) ? 2.0f : 1.0f;
         return MC_PI * sides * mc_prim_area(p) * v3_avg(p->emit);
     }
-    case LIGHT_ENVIRONMENT: {
-        float r = scene_radius(s);
-        return MC_PI * MC_PI * r * r * v3_avg(l->intensity);
-    }
+    case LIGHT_ENVIRONMENT: /* a disk of the scene's radius receiving the radiance (pbrt-v4,
+                             * UniformInfiniteLight::Phi) */
+        return MC_PI * MC_PI * s->radius * s->radius * v3_avg(l->intensity);
     }
     return 0.0f;
 }
@@ -117,7 +104,8 @@ static int sample_area(const struct prim *pr, vec3 p, vec2 u, struct light_sampl
  * one. Rigid maps preserve distances and angles, hence solid angles: the emitter is sampled, and
  * its pdf evaluated, in its time-0 frame with the shading point carried there, and the pdfs hold
  * unchanged in the world. */
-static int light_frame(const struct scene *s, const struct prim *pr, float time, struct rigid *x)
+static int light_frame(const struct light_scene *s, const struct prim *pr, float time,
+                       struct rigid *x)
 {
     if (pr->motion == 0)
         return 0;
@@ -125,8 +113,8 @@ static int light_frame(const struct scene *s, const struct prim *pr, float time,
     return 1;
 }
 
-int mc_light_sample(const struct scene *s, const struct light *l, vec3 p, float time, vec2 u,
-                    struct light_sample *out)
+int mc_light_sample(const struct light_scene *s, const struct light *l, vec3 p, float time,
+                    vec2 u, struct light_sample *out)
 {
     switch (l->kind) {
     case LIGHT_POINT: {
@@ -168,8 +156,8 @@ int mc_light_sample(const struct scene *s, const struct light *l, vec3 p, float 
     return 0;
 }
 
-float mc_light_pdf(const struct scene *s, const struct light *l, vec3 p, float time, vec3 wi,
-                   float t, const struct surface *sf)
+float mc_light_pdf(const struct light_scene *s, const struct light *l, vec3 p, float time,
+                   vec3 wi, float t, const struct surface *sf)
 {
     const struct prim *pr;
     struct rigid x;

@@ -59,6 +59,16 @@ static mcrt_status build_motion_bvh(struct scene *s, mc_diag *d)
     return st;
 }
 
+/* Radius of a sphere bounding the scene, moving primitives over the whole shutter (1 when the
+ * scene is empty): the environment's power is that of a disk of this radius (light.c). */
+static float scene_radius(const struct scene *s)
+{
+    struct aabb b = aabb_union(s->bvh.bounds, s->motion_bvh.bounds);
+    if (!(b.hi.x >= b.lo.x))
+        return 1.0f;
+    return fmaxf(0.5f * v3_length(v3_sub(b.hi, b.lo)), 1e-6f);
+}
+
 mcrt_status mc_scene_prepare(struct scene *s, mc_diag *d)
 {
     size_t i;
@@ -110,8 +120,11 @@ mcrt_status mc_scene_prepare(struct scene *s, mc_diag *d)
     power = malloc((s->light_count ? s->light_count : 1) * sizeof *power);
     if (!power)
         return mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
+    s->light_scene.prims = s->prims;
+    s->light_scene.motions = s->motions;
+    s->light_scene.radius = scene_radius(s);
     for (i = 0; i < s->light_count; i++)
-        power[i] = s->lights[i].power = mc_light_power(s, &s->lights[i]);
+        power[i] = s->lights[i].power = mc_light_power(&s->light_scene, &s->lights[i]);
     st = mc_alias_build(&s->light_select, power, s->light_count, d);
     free(power);
     if (st != MCRT_OK)

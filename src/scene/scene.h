@@ -7,6 +7,7 @@
 #include <stddef.h>
 
 #include "bsdf/bsdf.h"      /* struct mc_dielectric_ms */
+#include "camera/camera.h"  /* struct camera_desc */
 #include "core/diag.h"
 #include "geom/bvh.h"
 #include "geom/motion.h"
@@ -24,15 +25,6 @@ struct film_desc {
     int width, height, spp;          /* 512, 512, 16 */
     enum sampler_kind sampler;       /* stratified */
     enum filter_kind filter;         /* box */
-};
-
-struct camera_desc {
-    vec3 eye, look, up;              /* (0 0 5), (0 0 0), (0 1 0) */
-    float fov;                       /* full vertical angle in degrees: 40 */
-    float lens_radius;               /* thin lens; 0 = pinhole (the default) */
-    float focus_distance;            /* along the view direction; 0 = |look - eye| (the default) */
-    float shutter[2];                /* open and close times: 0 1 */
-    vec3 move;                       /* translation of eye and look per unit time: 0 */
 };
 
 struct integrator_desc {
@@ -80,6 +72,7 @@ struct scene {
     struct bvh bvh;
     struct bvh motion_bvh;
     size_t static_count;
+    struct light_scene light_scene;  /* what the light functions read: prims, motions, radius */
     struct mc_alias light_select;    /* chooses a light in proportion to its power */
     int env_light;                   /* index of the environment light or -1 */
     int prepared;
