@@ -43,6 +43,10 @@ typedef enum mcrt_status {
 const char *mcrt_version(void);
 /* Short English text for a status code. Static string. */
 const char *mcrt_status_string(mcrt_status status);
+/* The names of one closed set, as a static NULL-terminated array: "sampler" (the values of
+ * mcrt_options.sampler), "aov" (the layers of mcrt_options.aovs), "filter", "shape" and "light"
+ * (the scene language's film filters, shape blocks and light blocks). NULL for any other set. */
+const char *const *mcrt_names(const char *set);
 
 /* ---- Scenes ---- */
 
@@ -91,7 +95,8 @@ typedef struct mcrt_options {
      * estimated variance of each pixel mean), and of the surface each camera ray meets first,
      * averaged over the pixel: "albedo" (the material's colour), "normal" (the unit shading
      * normal facing the camera), "depth" (the distance from the ray's origin, in all three
-     * channels). Each is the layer NAME.R/G/B, and a miss gives 0. NULL = none. */
+     * channels); mcrt_names("aov") lists them. Each is the layer NAME.R/G/B, and a miss gives 0.
+     * NULL = none. */
     const char *aovs;
     /* Render only the pixels crop_x0 <= x < crop_x1, crop_y0 <= y < crop_y1 of the scene's image
      * (each the value it has in the whole image with the same seed). All 0: the whole image. */
@@ -102,7 +107,8 @@ typedef struct mcrt_options {
      * neither, one pass. The image depends on the seed and the number of passes only. */
     double time_budget;
     double target_error;
-    const char *sampler;    /* "random", "stratified" or "sobol"; NULL = the scene's */
+    const char *sampler;    /* one of mcrt_names("sampler"): "random", "stratified", "sobol";
+                             * NULL = the scene's */
     /* Nonzero: adaptive sampling. A uniform first pass, then passes that give each pixel samples
      * in proportion to its estimated error (sigma / sqrt(mean^2 + 0.01)), with a fifth of each
      * pass spread uniformly so that no pixel is starved. spp is then the mean samples per pixel:

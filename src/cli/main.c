@@ -16,6 +16,7 @@
 #include "cli/diff.h"
 #include "mcrt.h"
 
+/* The help, in three parts around the lines that list the library's names (print_usage). */
 static const char usage[] =
     "usage: mcrt [render] [options] SCENE\n"
     "       mcrt info SCENE\n"
@@ -39,18 +40,17 @@ static const char usage[] =
     "  --all-features      render with the general code path instead of the one built for the\n"
     "                      features the scene uses (the same image in expectation; slower)\n"
     "  --stats FILE        write statistics as JSON (size, spp, threads, seconds, rays, NaNs,\n"
-    "                      estimated relative MSE, efficiency)\n"
-    "  --aov LIST          extra layers in the EXR image, comma-separated: variance (the\n"
-    "                      estimated variance of each pixel mean), albedo, normal, depth (of\n"
-    "                      the first surface seen); layer NAME has channels NAME.R/G/B\n"
+    "                      estimated relative MSE, efficiency)\n";
+static const char usage_after_aov[] =
+    "                      (see mcrt(1)); layer NAME has channels NAME.R/G/B\n"
     "  --crop x0,y0,x1,y1  render only pixels x0 <= x < x1, y0 <= y < y1 (each as in the\n"
     "                      whole image with the same seed)\n"
     "  --time SECONDS      render passes of --spp samples until the time is spent\n"
     "  --target-error E    render passes of --spp samples until the estimated relative MSE\n"
     "                      is at most E\n"
     "  --adaptive          after a uniform first pass, give each pixel samples in proportion\n"
-    "                      to its estimated error; --spp is then the mean per pixel\n"
-    "  --sampler NAME      random, stratified or sobol (default: the scene's)\n"
+    "                      to its estimated error; --spp is then the mean per pixel\n";
+static const char usage_after_sampler[] =
     "  --quiet             print nothing but errors\n"
     "  --help              print this help and exit\n"
     "  --version           print the version and the built-in image formats, and exit\n"
@@ -62,6 +62,19 @@ static const char usage[] =
     "  2  bad input: bad options, a missing or malformed scene, an unsupported image format\n"
     "  130  interrupted (Ctrl-C): the complete passes were written; a second Ctrl-C quits\n"
     "       at once and leaves the output alone\n";
+
+static int print_usage(void)
+{
+    char names[128];
+    fputs(usage, stdout);
+    printf("  --aov LIST          extra layers in the EXR image, comma-separated, of: %s\n",
+           mc_args_names("aov", ", ", ", ", names, sizeof names));
+    fputs(usage_after_aov, stdout);
+    printf("  --sampler NAME      %s (default: the scene's)\n",
+           mc_args_names("sampler", ", ", " or ", names, sizeof names));
+    fputs(usage_after_sampler, stdout);
+    return fflush(stdout) == 0 ? STATUS_OK : STATUS_FAIL;
+}
 
 /* Image formats, for --version and for explaining a format this build lacks. */
 static const struct {
@@ -297,10 +310,10 @@ static int parse_render_args(int argc, char **argv, struct render_args *a)
             a->adaptive = 1;
             break;
         case OPT_SAMPLER:
-            if (strcmp(v, "random") != 0 && strcmp(v, "stratified") != 0
-                && strcmp(v, "sobol") != 0) {
-                fprintf(stderr, "mcrt: --sampler: expected random, stratified or sobol, got "
-                                "'%s'\n", v);
+            if (!mc_args_is_name("sampler", v)) {
+                char names[128];
+                fprintf(stderr, "mcrt: --sampler: expected %s, got '%s'\n",
+                        mc_args_names("sampler", ", ", " or ", names, sizeof names), v);
                 return STATUS_USAGE;
             }
             a->sampler = v;
@@ -309,8 +322,7 @@ static int parse_render_args(int argc, char **argv, struct render_args *a)
             a->quiet = 1;
             break;
         case OPT_HELP:
-            fputs(usage, stdout);
-            return fflush(stdout) == 0 ? STATUS_OK : STATUS_FAIL;
+            return print_usage();
         case OPT_VERSION:
             return print_version();
         }
@@ -501,8 +513,7 @@ static int cmd_info(int argc, char **argv)
     mcrt_status status;
     int code;
     if (argc == 2 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0)) {
-        fputs(usage, stdout);
-        return fflush(stdout) == 0 ? STATUS_OK : STATUS_FAIL;
+        return print_usage();
     }
     if (argc != 2) {
         fprintf(stderr, "mcrt: usage: mcrt info SCENE\n");

@@ -46,7 +46,7 @@ struct key {
     enum vkind kind;
     double lo, hi;               /* V_REAL, V_INT */
     const char *rule;            /* V_REAL: what the range is, for the message */
-    const char *const *choices;  /* V_CHOICE: NULL-terminated, in enum order */
+    const char *const *choices;  /* V_CHOICE: NULL-terminated, indexed by the enum */
     const char *noun;            /* V_ALBEDO: what the number is, for the message */
 };
 
@@ -522,8 +522,6 @@ static const struct token *latest(const struct block *b, int n, const int *keys)
 
 /* ---- Blocks ---- */
 
-static const char *const sampler_names[] = {"random", "stratified", "sobol", NULL};
-static const char *const filter_names[] = {"box", "tent", "gaussian", NULL};
 static const char *const method_names[] = {"path", "direct", NULL};
 static const char *const strategy_names[] = {"mis", "bsdf", "light", NULL};
 
@@ -532,8 +530,8 @@ static const struct key film_keys[] = {
     {"width", V_INT, 1, 65536, NULL, NULL, NULL},
     {"height", V_INT, 1, 65536, NULL, NULL, NULL},
     {"spp", V_INT, 1, 16777216, NULL, NULL, NULL},
-    {"sampler", V_CHOICE, 0, 0, NULL, sampler_names, NULL},
-    {"filter", V_CHOICE, 0, 0, NULL, filter_names, NULL},
+    {"sampler", V_CHOICE, 0, 0, NULL, mc_sampler_names, NULL},
+    {"filter", V_CHOICE, 0, 0, NULL, mc_filter_names, NULL},
 };
 
 static void finish_film(struct parser *p, struct block *b)
@@ -1006,6 +1004,22 @@ static const struct block_kind block_kinds[] = {
 typedef char check_max_keys[sizeof mesh_keys / sizeof mesh_keys[0] <= MAX_KEYS ? 1 : -1];
 typedef char check_material_keys[sizeof material_keys / sizeof material_keys[0] <= MAX_KEYS ? 1 : -1];
 typedef char check_kinds[sizeof block_kinds / sizeof block_kinds[0] <= 16 ? 1 : -1];
+
+void mc_scene_words(void (*word)(void *user, const char *block, const char *key,
+                                  const char *value),
+                    void *user)
+{
+    int i, j, c;
+    for (i = 0; i < BLOCK_KIND_COUNT; i++) {
+        const struct block_kind *b = &block_kinds[i];
+        word(user, b->name, NULL, NULL);
+        for (j = 0; j < b->nkeys; j++) {
+            word(user, b->name, b->keys[j].name, NULL);
+            for (c = 0; b->keys[j].kind == V_CHOICE && b->keys[j].choices[c]; c++)
+                word(user, b->name, b->keys[j].name, b->keys[j].choices[c]);
+        }
+    }
+}
 
 static int find_block(struct parser *p)
 {

@@ -111,4 +111,11 @@ void mc_scene_surface(const struct scene *s, const struct ray *r, const struct h
 mcrt_status mc_scene_parse(struct scene *s, const char *text, size_t len, const char *name,
                            const char *base_dir, mc_diag *d);
 
+/* Every word of the scene language, from the parser's tables: word(user, BLOCK, NULL, NULL) for
+ * each block kind, word(user, BLOCK, KEY, NULL) for each of its keys and word(user, BLOCK, KEY,
+ * VALUE) for each value a choice key takes (tests/tools/words lists them for tests/docs.sh). */
+void mc_scene_words(void (*word)(void *user, const char *block, const char *key,
+                                  const char *value),
+                    void *user);
+
 #endif
