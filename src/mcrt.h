@@ -44,8 +44,9 @@ const char *mcrt_version(void);
 /* Short English text for a status code. Static string. */
 const char *mcrt_status_string(mcrt_status status);
 /* The names of one closed set, as a static NULL-terminated array: "sampler" (the values of
- * mcrt_options.sampler), "aov" (the layers of mcrt_options.aovs), "filter", "shape" and "light"
- * (the scene language's film filters, shape blocks and light blocks). NULL for any other set. */
+ * mcrt_options.sampler), "aov" (the layers of mcrt_options.aovs), "filter" and "shape" (the
+ * scene language's film filters and shape blocks), "light" (the kinds of light: point, area,
+ * environment). NULL for any other set. */
 const char *const *mcrt_names(const char *set);
 
 /* ---- Scenes ---- */

@@ -484,12 +484,18 @@ void mcrt_render_stats(const mcrt_render *r, mcrt_stats *out)
 
 int mcrt_format_supported(const char *suffix) { return suffix && mc_image_supported(suffix); }
 
+/* The scene language's shape blocks: the shapes of MC_SHAPES, and meshes of triangles. */
+#define X(kind, name) #name,
+static const char *const shape_blocks[] = {MC_SHAPES(X) "mesh", NULL};
+#undef X
+
 const char *const *mcrt_names(const char *set)
 {
     static const struct {
         const char *set;
         const char *const *names;
-    } sets[] = {{"sampler", mc_sampler_names}, {"aov", mc_aov_names}, {"filter", mc_filter_names}};
+    } sets[] = {{"sampler", mc_sampler_names}, {"aov", mc_aov_names}, {"filter", mc_filter_names},
+                {"shape", shape_blocks}, {"light", mc_light_names}};
     size_t i;
     for (i = 0; set && i < sizeof sets / sizeof sets[0]; i++)
         if (strcmp(set, sets[i].set) == 0)

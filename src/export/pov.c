@@ -67,6 +67,10 @@ struct pov_shape {
                  * the shape is refused */
 };
 static const struct pov_shape pov_shapes[PRIM_KIND_COUNT];
+/* The writer of each kind of light, by enum light_kind (defined below); area lights are written
+ * with their shapes (pov_shapes), the environment is refused, and so is any kind without one. */
+typedef void pov_light_fn(FILE *f, const struct light *l);
+static pov_light_fn *const pov_lights[LIGHT_KIND_COUNT];
 
 static mcrt_status refuse(mc_diag *d, const char *what, const char *why)
 {
@@ -99,7 +103,7 @@ static mcrt_status check_emitter(const struct scene *s, const struct prim *p, mc
     const struct material *m = &s->materials[p->material];
     vec3 c = m->color;
     char what[64];
-    snprintf(what, sizeof what, "an emitting %s", mc_shapes[p->kind]->name);
+    snprintf(what, sizeof what, "an emitting %s", mc_shape_names[p->kind]);
     if (!pov_shapes[p->kind].light)
         return refuse(d, what, "only quads (spotlight-lobed area lights) and spheres (circular "
                                "area lights) are mapped");
@@ -127,11 +131,17 @@ mcrt_status mc_pov_check(const struct scene *s, mc_diag *d)
         return refuse(d, "the environment light", "a constant sky has no verified POV-Ray mapping");
     if (s->integrator.max_depth == 0)
         return refuse(d, "max_depth 0", "POV-Ray always lights the surfaces it sees");
+    for (i = 0; i < s->light_count; i++)
+        if (s->lights[i].kind != LIGHT_AREA && !pov_lights[s->lights[i].kind]) {
+            char what[64];
+            snprintf(what, sizeof what, "a %s light", mc_light_names[s->lights[i].kind]);
+            return refuse(d, what, "the kind has no POV-Ray mapping");
+        }
     for (i = 0; i < s->prim_count; i++) {
         const struct prim *p = &s->prims[i];
         const struct material *m = &s->materials[p->material];
         if (!pov_shapes[p->kind].rank)
-            return refuse(d, mc_shapes[p->kind]->name, "the shape has no POV-Ray mapping");
+            return refuse(d, mc_shape_names[p->kind], "the shape has no POV-Ray mapping");
         if ((st = check_material(m, d)) != MCRT_OK)
             return st;
         if (p->normals >= 0)
@@ -140,7 +150,7 @@ mcrt_status mc_pov_check(const struct scene *s, mc_diag *d)
             return refuse(d, "spin", "only translations are exported as clock motion");
         if (m->kind == MATERIAL_GLASS && !pov_shapes[p->kind].glass) {
             char what[64];
-            snprintf(what, sizeof what, "glass on a %s", mc_shapes[p->kind]->name);
+            snprintf(what, sizeof what, "glass on a %s", mc_shape_names[p->kind]);
             return refuse(d, what, "only glass spheres have a verified inside");
         }
         if (is_emitter(p) && (st = check_emitter(s, p, d)) != MCRT_OK)
@@ -380,6 +390,8 @@ static void put_point_light(FILE *f, const struct light *l)
     fprintf(f, " fade_distance %g fade_power 2 }\n", FD);
 }
 
+static pov_light_fn *const pov_lights[LIGHT_KIND_COUNT] = {[LIGHT_POINT] = put_point_light};
+
 static void put_sphere(FILE *f, const struct prim *p)
 {
     fputs("sphere { ", f);
@@ -487,8 +499,8 @@ static int put_scene(FILE *f, const struct scene *s)
     }
     free(used);
     for (i = 0; i < s->light_count; i++)
-        if (s->lights[i].kind == LIGHT_POINT)
-            put_point_light(f, &s->lights[i]);
+        if (pov_lights[s->lights[i].kind])
+            pov_lights[s->lights[i].kind](f, &s->lights[i]);
     for (i = 0; i < s->prim_count; i++) {
         const struct prim *p = prims[i];
         if (!is_emitter(p))

@@ -86,10 +86,10 @@ vec3 mc_disk_sample(const struct prim *p, vec2 u, vec3 *n)
 }
 
 /* Default: the unit disk at the origin facing +z, like the quad and the triangle. */
-static const struct shape_param params[] = {
-    {"center", SHAPE_POINT, {0.0f, 0.0f, 0.0f}},
-    {"normal", SHAPE_DIRECTION, {0.0f, 0.0f, 1.0f}},
-    {"radius", SHAPE_LENGTH, {1.0f, 0.0f, 0.0f}},
+static const struct block_param params[] = {
+    {"center", PARAM_POINT, {0.0f, 0.0f, 0.0f}},
+    {"normal", PARAM_DIRECTION, {0.0f, 0.0f, 1.0f}},
+    {"radius", PARAM_LENGTH, {1.0f, 0.0f, 0.0f}},
 };
 
 static const char *build(struct prim *p, const vec3 *v, unsigned *blame)
@@ -101,4 +101,4 @@ static const char *build(struct prim *p, const vec3 *v, unsigned *blame)
     return NULL;
 }
 
-const struct shape mc_disk_shape = {"disk", params, 3, build};
+const struct shape mc_disk_shape = {params, 3, build};

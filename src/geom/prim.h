@@ -40,29 +40,33 @@ struct prim {
     vec3 emit;        /* emitted radiance (Lambertian), zero when not an emitter */
 };
 
-/* What a shape is made from in the scene language: `NAME { KEY value ... }` (man/mcrt.5), besides
- * the keys every shape takes (material, emit, two_sided, flip, move). */
-enum shape_param_kind {
-    SHAPE_POINT,     /* three numbers: a point or a vector */
-    SHAPE_DIRECTION, /* three numbers, normalised (in double); zero length is an error */
-    SHAPE_LENGTH     /* one positive number, in .x */
+/* A parameter of a shape's or a light's block in the scene language, `NAME { KEY value ... }`
+ * (man/mcrt.5), which the parser reads into a vec3. */
+enum param_kind {
+    PARAM_POINT,     /* three numbers: a point or a vector */
+    PARAM_DIRECTION, /* three numbers, normalised (in double); zero length is an error */
+    PARAM_LENGTH,    /* one positive number, in .x */
+    PARAM_RGB        /* one number (grey) or three, none negative */
 };
-struct shape_param {
+struct block_param {
     const char *name;
-    enum shape_param_kind kind;
+    enum param_kind kind;
     vec3 def;                    /* the value when the key is not given */
 };
-#define MC_SHAPE_PARAMS 4
+#define MC_BLOCK_PARAMS 4
+/* What a shape is made from, besides the keys every shape takes (material, emit, two_sided, flip,
+ * move). */
 struct shape {
-    const char *name;                 /* the scene language's block, and the shape in messages */
-    const struct shape_param *params; /* at most MC_SHAPE_PARAMS */
+    const struct block_param *params; /* at most MC_BLOCK_PARAMS */
     int nparams;
     /* Fill p->p[] from the parameters' values v[] (defaults applied). Returns NULL, or what is
      * wrong with them, setting bit i of *blame for each parameter i it concerns. */
     const char *(*build)(struct prim *p, const vec3 *v, unsigned *blame);
 };
-/* The descriptors, indexed by enum prim_kind. */
+/* The descriptors, and the names (the scene language's blocks, the shapes in messages), indexed
+ * by enum prim_kind; the names end in NULL (core/names.h). */
 extern const struct shape *const mc_shapes[PRIM_KIND_COUNT];
+extern const char *const mc_shape_names[PRIM_KIND_COUNT + 1];
 
 /* What the BVH reports: distance, primitive index and the primitive's own 2D parameters
  * (triangle: barycentrics of p1 and p2; quad: s, t along edge1, edge2; sphere, disk: unused). */

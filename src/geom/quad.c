@@ -60,10 +60,10 @@ vec3 mc_quad_sample(const struct prim *p, vec2 u, vec3 *n)
 }
 
 /* Default: the 2 x 2 square centred on the origin in the z = 0 plane, facing +z. */
-static const struct shape_param params[] = {
-    {"corner", SHAPE_POINT, {-1.0f, -1.0f, 0.0f}},
-    {"edge1", SHAPE_POINT, {2.0f, 0.0f, 0.0f}},
-    {"edge2", SHAPE_POINT, {0.0f, 2.0f, 0.0f}},
+static const struct block_param params[] = {
+    {"corner", PARAM_POINT, {-1.0f, -1.0f, 0.0f}},
+    {"edge1", PARAM_POINT, {2.0f, 0.0f, 0.0f}},
+    {"edge2", PARAM_POINT, {0.0f, 2.0f, 0.0f}},
 };
 
 static const char *build(struct prim *p, const vec3 *v, unsigned *blame)
@@ -80,4 +80,4 @@ static const char *build(struct prim *p, const vec3 *v, unsigned *blame)
     return NULL;
 }
 
-const struct shape mc_quad_shape = {"quad", params, 3, build};
+const struct shape mc_quad_shape = {params, 3, build};

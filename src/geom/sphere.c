@@ -76,9 +76,9 @@ vec3 mc_sphere_sample(const struct prim *p, vec2 u, vec3 *n)
     return v3_madd(p->p[0], w, p->p[1].x);
 }
 
-static const struct shape_param params[] = {
-    {"center", SHAPE_POINT, {0.0f, 0.0f, 0.0f}},
-    {"radius", SHAPE_LENGTH, {1.0f, 0.0f, 0.0f}},
+static const struct block_param params[] = {
+    {"center", PARAM_POINT, {0.0f, 0.0f, 0.0f}},
+    {"radius", PARAM_LENGTH, {1.0f, 0.0f, 0.0f}},
 };
 
 static const char *build(struct prim *p, const vec3 *v, unsigned *blame)
@@ -89,4 +89,4 @@ static const char *build(struct prim *p, const vec3 *v, unsigned *blame)
     return NULL;
 }
 
-const struct shape mc_sphere_shape = {"sphere", params, 2, build};
+const struct shape mc_sphere_shape = {params, 2, build};

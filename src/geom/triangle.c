@@ -116,10 +116,10 @@ vec3 mc_triangle_sample(const struct prim *p, vec2 u, vec3 *n)
 }
 
 /* Default: (-1,-1,0), (1,-1,0), (0,1,0), facing +z. */
-static const struct shape_param params[] = {
-    {"v0", SHAPE_POINT, {-1.0f, -1.0f, 0.0f}},
-    {"v1", SHAPE_POINT, {1.0f, -1.0f, 0.0f}},
-    {"v2", SHAPE_POINT, {0.0f, 1.0f, 0.0f}},
+static const struct block_param params[] = {
+    {"v0", PARAM_POINT, {-1.0f, -1.0f, 0.0f}},
+    {"v1", PARAM_POINT, {1.0f, -1.0f, 0.0f}},
+    {"v2", PARAM_POINT, {0.0f, 1.0f, 0.0f}},
 };
 
 static const char *build(struct prim *p, const vec3 *v, unsigned *blame)
@@ -132,4 +132,4 @@ static const char *build(struct prim *p, const vec3 *v, unsigned *blame)
     return NULL;
 }
 
-const struct shape mc_triangle_shape = {"triangle", params, 3, build};
+const struct shape mc_triangle_shape = {params, 3, build};

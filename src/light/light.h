@@ -9,7 +9,15 @@
 #include "geom/motion.h"
 #include "geom/prim.h"
 
-enum light_kind { LIGHT_POINT, LIGHT_AREA, LIGHT_ENVIRONMENT };
+/* The kinds of light, X(KIND, name): each is the file src/light/NAME.c, which defines the
+ * functions of light/light_impl.h and the descriptor below. Adding a kind is that file and a line
+ * here (and, to export it, one in export/pov.c). */
+#define MC_LIGHTS(X) X(LIGHT_POINT, point) X(LIGHT_AREA, area) X(LIGHT_ENVIRONMENT, environment)
+#define MC_LIGHT_ENUM(kind, name) kind,
+enum light_kind { MC_LIGHTS(MC_LIGHT_ENUM) };
+#undef MC_LIGHT_ENUM
+#define MC_LIGHT_ONE(kind, name) +1
+#define LIGHT_KIND_COUNT (0 MC_LIGHTS(MC_LIGHT_ONE))
 
 struct light {
     enum light_kind kind;
@@ -18,6 +26,22 @@ struct light {
     uint32_t prim;   /* area: the emitting primitive */
     double power;    /* scalar power (mean over channels) used for selection; set by prepare */
 };
+
+/* A kind of light in the scene language and in the integrators' eyes. */
+struct light_desc {
+    const char *block;                 /* its block, `block { KEY value ... }`; NULL: none (area
+                                        * lights are made from emitting shapes) */
+    int unique;                        /* at most one block per scene */
+    int delta;                         /* a delta distribution: found by light sampling alone */
+    const struct block_param *params;  /* at most MC_BLOCK_PARAMS */
+    int nparams;
+    /* Fill l (zeroed, kind set) from the parameters' values v[] (defaults applied). */
+    void (*build)(struct light *l, const vec3 *v);
+};
+/* The descriptors and the kinds' names, indexed by enum light_kind; the names end in NULL
+ * (core/names.h). */
+extern const struct light_desc *const mc_light_kinds[LIGHT_KIND_COUNT];
+extern const char *const mc_light_names[LIGHT_KIND_COUNT + 1];
 
 /* What the light functions read of a prepared scene (scene/prepare.c fills it): the primitives
  * area lights index, the motions moving ones follow, and the radius of a sphere bounding the

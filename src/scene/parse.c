@@ -74,6 +74,7 @@ struct block_kind {
     int named;                   /* `kind NAME { ... }` */
     void (*finish)(struct parser *p, struct block *b);
     int shape;                   /* a shape of MC_SHAPES: its enum prim_kind; otherwise -1 */
+    int light;                   /* a kind of light of MC_LIGHTS: its enum light_kind; or -1 */
 };
 
 /* The block kinds in the order messages list them: the fixed ones around the shapes of
@@ -83,6 +84,7 @@ struct block_kinds {
     struct block_kind kind[MAX_BLOCK_KINDS];
     int count;
     struct key shape_keys[PRIM_KIND_COUNT][MAX_KEYS];
+    struct key light_keys[LIGHT_KIND_COUNT][MAX_KEYS];
 };
 
 struct block {
@@ -828,30 +830,38 @@ static void add_shape(struct parser *p, const struct block *b, const struct prim
     note_motion(p, b, first, NULL);
 }
 
+/* The values of the parameters, keys first, first + 1, ... of b, into v: the defaults where not
+ * given, directions normalised. */
+static void param_values(struct parser *p, const struct block *b, int first,
+                         const struct block_param *params, int n, vec3 *v)
+{
+    int i;
+    for (i = 0; i < n; i++) {
+        const struct value *val = &b->v[first + i];
+        char what[96];
+        v[i] = params[i].def;
+        if (!val->set)
+            continue;
+        if (params[i].kind == PARAM_DIRECTION) {
+            snprintf(what, sizeof what, "%s '%s'", b->kind->name, params[i].name);
+            v[i] = unit_of(p, val, what);
+        } else {
+            v[i] = params[i].kind == PARAM_LENGTH ? v3((float)val->x[0], 0.0f, 0.0f) : vec_of(val);
+        }
+    }
+}
+
 /* Any shape of MC_SHAPES: its parameters (after the common keys), defaults applied and
  * directions normalised, made into a primitive by the shape's own build. */
 static void finish_shape(struct parser *p, struct block *b)
 {
     const struct shape *sh = mc_shapes[b->kind->shape];
     struct prim pr = shape_proto(b);
-    vec3 v[MC_SHAPE_PARAMS];
-    int keys[MC_SHAPE_PARAMS], n = 0, i;
+    vec3 v[MC_BLOCK_PARAMS];
+    int keys[MC_BLOCK_PARAMS], n = 0, i;
     unsigned blame = 0;
     const char *why;
-    for (i = 0; i < sh->nparams; i++) {
-        const struct value *val = &b->v[SHAPE_KEYS_END + i];
-        char what[96];
-        v[i] = sh->params[i].def;
-        if (!val->set)
-            continue;
-        if (sh->params[i].kind == SHAPE_DIRECTION) {
-            snprintf(what, sizeof what, "%s '%s'", sh->name, sh->params[i].name);
-            v[i] = unit_of(p, val, what);
-        } else {
-            v[i] = sh->params[i].kind == SHAPE_LENGTH ? v3((float)val->x[0], 0.0f, 0.0f)
-                                                       : vec_of(val);
-        }
-    }
+    param_values(p, b, SHAPE_KEYS_END, sh->params, sh->nparams, v);
     pr.kind = (uint8_t)b->kind->shape;
     if ((why = sh->build(&pr, v, &blame)) != NULL) {
         for (i = 0; i < sh->nparams; i++)
@@ -913,66 +923,49 @@ static void finish_mesh(struct parser *p, struct block *b)
     note_motion(p, b, first, &b->v[MESH_SPIN]);
 }
 
-enum { POINT_POSITION, POINT_INTENSITY };
-static const struct key point_light_keys[] = {
-    {"position", V_POINT, 0, 0, NULL, NULL, NULL},
-    {"intensity", V_RGB, 0, 0, NULL, NULL, NULL},
-};
-
-/* Defaults as pbrt's point light: at the origin, intensity 1. */
-static void finish_point_light(struct parser *p, struct block *b)
+/* Any kind of light of MC_LIGHTS that has a block: its parameters made into a light by the kind's
+ * own build. */
+static void finish_light(struct parser *p, struct block *b)
 {
+    const struct light_desc *ld = mc_light_kinds[b->kind->light];
     struct light l;
+    vec3 v[MC_BLOCK_PARAMS];
+    param_values(p, b, 0, ld->params, ld->nparams, v);
     memset(&l, 0, sizeof l);
-    l.kind = LIGHT_POINT;
-    l.position = vec_or(b, POINT_POSITION, v3s(0.0f));
-    l.intensity = vec_or(b, POINT_INTENSITY, v3s(1.0f));
+    l.kind = (enum light_kind)b->kind->light;
+    ld->build(&l, v);
     if (mc_scene_add_light(p->s, &l) < 0)
         fail_nomem(p);
 }
 
-enum { ENV_RADIANCE };
-static const struct key environment_keys[] = {
-    {"radiance", V_RGB, 0, 0, NULL, NULL, NULL},
-};
-
-/* Default radiance 1: the white sky a scene without lights gets anyway. */
-static void finish_environment(struct parser *p, struct block *b)
-{
-    p->s->has_environment = 1;
-    p->s->environment = vec_or(b, ENV_RADIANCE, v3s(1.0f));
-}
-
 #define KEYS(k) k, (int)(sizeof k / sizeof k[0])
 static const struct block_kind kinds_before_shapes[] = {
-    {"film", KEYS(film_keys), 1, 0, finish_film, -1},
-    {"camera", KEYS(camera_keys), 1, 0, finish_camera, -1},
-    {"integrator", KEYS(integrator_keys), 1, 0, finish_integrator, -1},
-    {"material", KEYS(material_keys), 0, 1, finish_material, -1},
+    {"film", KEYS(film_keys), 1, 0, finish_film, -1, -1},
+    {"camera", KEYS(camera_keys), 1, 0, finish_camera, -1, -1},
+    {"integrator", KEYS(integrator_keys), 1, 0, finish_integrator, -1, -1},
+    {"material", KEYS(material_keys), 0, 1, finish_material, -1, -1},
 };
-static const struct block_kind kinds_after_shapes[] = {
-    {"mesh", KEYS(mesh_keys), 0, 0, finish_mesh, -1},
-    {"point_light", KEYS(point_light_keys), 0, 0, finish_point_light, -1},
-    {"environment", KEYS(environment_keys), 1, 0, finish_environment, -1},
-};
+static const struct block_kind mesh_kind = {"mesh", KEYS(mesh_keys), 0, 0, finish_mesh, -1, -1};
 #define N_BEFORE (int)(sizeof kinds_before_shapes / sizeof kinds_before_shapes[0])
-#define N_AFTER (int)(sizeof kinds_after_shapes / sizeof kinds_after_shapes[0])
 static const struct key common_shape_keys[] = {SHAPE_KEYS};
 
 /* Compile-time checks: struct block holds MAX_KEYS values (the material and the mesh have the most
- * keys, a shape at most MC_SHAPE_PARAMS besides the common ones), and the parser remembers the
+ * keys, a shape at most MC_BLOCK_PARAMS besides the common ones), and the parser remembers the
  * first block of up to MAX_BLOCK_KINDS kinds. */
 typedef char check_max_keys[sizeof mesh_keys / sizeof mesh_keys[0] <= MAX_KEYS ? 1 : -1];
 typedef char check_material_keys[sizeof material_keys / sizeof material_keys[0] <= MAX_KEYS ? 1 : -1];
-typedef char check_shape_keys[SHAPE_KEYS_END + MC_SHAPE_PARAMS <= MAX_KEYS ? 1 : -1];
-typedef char check_kinds[N_BEFORE + PRIM_KIND_COUNT + N_AFTER <= MAX_BLOCK_KINDS ? 1 : -1];
+typedef char check_shape_keys[SHAPE_KEYS_END + MC_BLOCK_PARAMS <= MAX_KEYS ? 1 : -1];
+typedef char check_kinds[N_BEFORE + PRIM_KIND_COUNT + 1 + LIGHT_KIND_COUNT <= MAX_BLOCK_KINDS ? 1
+                                                                                       : -1];
 
-/* A shape parameter as a key of the scene language. */
-static struct key shape_key(const struct shape_param *sp)
+/* A parameter of a shape or a light as a key of the scene language. */
+static struct key param_key(const struct block_param *bp)
 {
     struct key k = {NULL, V_POINT, 0, 0, NULL, NULL, NULL};
-    k.name = sp->name;
-    if (sp->kind == SHAPE_LENGTH) {
+    k.name = bp->name;
+    if (bp->kind == PARAM_RGB)
+        k.kind = V_RGB;
+    if (bp->kind == PARAM_LENGTH) {
         k.kind = V_REAL;
         k.hi = INFINITY;
         k.rule = "must be positive";
@@ -980,27 +973,47 @@ static struct key shape_key(const struct shape_param *sp)
     return k;
 }
 
-/* Every block kind: the fixed ones, with the shapes of MC_SHAPES between them. */
+/* A block kind whose keys are `first` fixed ones followed by the parameters. */
+static struct block_kind param_kind(const char *name, struct key *keys, const struct key *fixed,
+                                    int first, const struct block_param *params, int nparams)
+{
+    struct block_kind k;
+    int j;
+    if (first) /* memcpy from NULL is undefined even for no bytes */
+        memcpy(keys, fixed, (size_t)first * sizeof *keys);
+    for (j = 0; j < nparams; j++)
+        keys[first + j] = param_key(&params[j]);
+    k.name = name;
+    k.keys = keys;
+    k.nkeys = first + nparams;
+    k.unique = k.named = 0;
+    k.shape = k.light = -1;
+    return k;
+}
+
+/* Every block kind: the fixed ones, the shapes of MC_SHAPES, meshes, then the kinds of light of
+ * MC_LIGHTS that have a block. */
 static void block_kinds_make(struct block_kinds *bk)
 {
-    int i, j, n = 0;
+    int i, n = 0;
     for (i = 0; i < N_BEFORE; i++)
         bk->kind[n++] = kinds_before_shapes[i];
     for (i = 0; i < PRIM_KIND_COUNT; i++) {
-        const struct shape *sh = mc_shapes[i];
-        struct key *keys = bk->shape_keys[i];
-        memcpy(keys, common_shape_keys, sizeof common_shape_keys);
-        for (j = 0; j < sh->nparams; j++)
-            keys[SHAPE_KEYS_END + j] = shape_key(&sh->params[j]);
-        bk->kind[n].name = sh->name;
-        bk->kind[n].keys = keys;
-        bk->kind[n].nkeys = SHAPE_KEYS_END + sh->nparams;
-        bk->kind[n].unique = bk->kind[n].named = 0;
+        bk->kind[n] = param_kind(mc_shape_names[i], bk->shape_keys[i], common_shape_keys,
+                                 SHAPE_KEYS_END, mc_shapes[i]->params, mc_shapes[i]->nparams);
         bk->kind[n].finish = finish_shape;
         bk->kind[n++].shape = i;
     }
-    for (i = 0; i < N_AFTER; i++)
-        bk->kind[n++] = kinds_after_shapes[i];
+    bk->kind[n++] = mesh_kind;
+    for (i = 0; i < LIGHT_KIND_COUNT; i++) {
+        const struct light_desc *ld = mc_light_kinds[i];
+        if (!ld->block)
+            continue;
+        bk->kind[n] = param_kind(ld->block, bk->light_keys[i], NULL, 0, ld->params, ld->nparams);
+        bk->kind[n].unique = ld->unique;
+        bk->kind[n].finish = finish_light;
+        bk->kind[n++].light = i;
+    }
     bk->count = n;
 }
 

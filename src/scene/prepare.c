@@ -72,9 +72,9 @@ static float scene_radius(const struct scene *s)
 mcrt_status mc_scene_prepare(struct scene *s, mc_diag *d)
 {
     size_t i;
-    struct light l;
+    struct light l, env;
     mcrt_status st;
-    int has_light;
+    int has_light, has_env = 0;
     double *power;
     if (s->prepared)
         return MCRT_OK;
@@ -90,7 +90,19 @@ mcrt_status mc_scene_prepare(struct scene *s, mc_diag *d)
         st = build_motion_bvh(s, d);
     if (st != MCRT_OK)
         return st;
-    has_light = s->light_count > 0 || s->has_environment;
+    /* The environment, given or the default sky, goes last: it is found by s->env_light. */
+    memset(&env, 0, sizeof env);
+    env.kind = LIGHT_ENVIRONMENT;
+    env.intensity = v3s(1.0f);
+    for (i = 0; i < s->light_count; i++)
+        if (s->lights[i].kind == LIGHT_ENVIRONMENT) { /* at most one (the parser) */
+            env = s->lights[i];
+            has_env = 1;
+            memmove(&s->lights[i], &s->lights[i + 1], (s->light_count - i - 1) * sizeof env);
+            s->light_count--;
+            break;
+        }
+    has_light = s->light_count > 0 || has_env;
     for (i = 0; i < s->prim_count; i++) {
         struct prim *p = &s->prims[i];
         p->light = -1;
@@ -104,16 +116,8 @@ mcrt_status mc_scene_prepare(struct scene *s, mc_diag *d)
             return mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
         has_light = 1;
     }
-    if (!has_light) {
-        s->has_environment = 1;
-        s->environment = v3s(1.0f);
-    }
-    if (s->has_environment) {
-        l.kind = LIGHT_ENVIRONMENT;
-        l.prim = 0;
-        l.position = v3s(0.0f);
-        l.intensity = s->environment;
-        s->env_light = mc_scene_add_light(s, &l);
+    if (has_env || !has_light) {
+        s->env_light = mc_scene_add_light(s, &env);
         if (s->env_light < 0)
             return mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
     }

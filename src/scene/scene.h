@@ -62,10 +62,9 @@ struct scene {
     struct motion *motions;          /* a moving primitive's motion is motions[prim.motion - 1] */
     size_t motion_count, motion_cap;
 
-    struct light *lights;            /* point lights as parsed; area and environment added by prepare */
+    struct light *lights;            /* as parsed; prepare adds the area lights and puts the
+                                        environment (given or the default sky) last */
     size_t light_count, light_cap;
-    int has_environment;             /* an environment block was given */
-    vec3 environment;                /* its radiance */
 
     /* Built by mc_scene_prepare: prims[0, static_count) are static, in `bvh`; the moving ones
      * follow, in `motion_bvh`, bounded over the whole shutter. */
