@@ -8,7 +8,11 @@
 passed=0
 failed=0
 check() {
-    if [ "$2" = ok ]; then passed=$((passed + 1)); echo "ok $1"; else failed=$((failed + 1)); echo "FAIL $1: $2"; fi
+    if [ "$2" = ok ]; then
+        passed=$((passed + 1)); echo "ok $1"
+    else
+        failed=$((failed + 1)); echo "FAIL $1: $2"
+    fi
 }
 
 # "NAME RANK" per layer, lowest first: mcrt.h is a layer of its own, as is each directory.

@@ -9,10 +9,13 @@
 /* The three uses of a table MC_SETS(X) of lines X(KIND, NAME):
  *     enum set_kind { MC_SETS(MC_NAMES_ENUM) };            the enumerators
  *     #define SET_COUNT (0 MC_SETS(MC_NAMES_COUNT))         their number
- *     names[SET_COUNT + 1] = {MC_SETS(MC_NAMES_ENTRY) [SET_COUNT] = NULL}   the names by kind */
+ *     names[SET_COUNT + 1] = {MC_SETS(MC_NAMES_ENTRY) [SET_COUNT] = NULL}   the names by kind
+ * (NAME a string literal; MC_NAMES_IDENT when it is an identifier, made a string). */
 #define MC_NAMES_ENUM(kind, name) kind,
 #define MC_NAMES_COUNT(kind, name) +1
 #define MC_NAMES_ENTRY(kind, name) [kind] = name,
+/* The same for tables whose NAME is an identifier (the shapes, the kinds of light). */
+#define MC_NAMES_IDENT(kind, name) [kind] = #name,
 
 /* Index of name[0..len) in the NULL-terminated names, or -1. */
 int mc_names_find(const char *const *names, const char *name, size_t len);

@@ -122,7 +122,10 @@ static mcrt_status check_emitter(const struct scene *s, const struct prim *p, mc
     return MCRT_OK;
 }
 
-mcrt_status mc_pov_check(const struct scene *s, mc_diag *d)
+/* Whether a prepared scene can be exported faithfully: MCRT_OK, or MCRT_ERR_UNSUPPORTED with a
+ * message naming the first feature POV-Ray cannot reproduce (the rules are listed in mcrt(1),
+ * `mcrt pov`). */
+static mcrt_status pov_check(const struct scene *s, mc_diag *d)
 {
     size_t i;
     int specular = 0;
@@ -444,9 +447,9 @@ static void put_prim(FILE *f, const struct scene *s, const struct prim *p)
 
 /* The whole file; 0 when out of memory. */
 /* qsort order of primitives: the kind (its rank in pov_shapes), material, flags, motion, normals,
- * then the bytes of the geometry and the emission. Any fixed order would do; what matters is that it is not the BVH's
- * leaf order, in which scene preparation leaves the primitives: the file must not change when only
- * the BVH build does, since references are compared with it byte for byte. */
+ * then the bytes of the geometry and the emission. Any fixed order would do; what matters is that
+ * it is not the BVH's leaf order, in which scene preparation leaves the primitives: the file must
+ * not change when only the BVH build does, since references are compared with it byte for byte. */
 static int prim_order(const void *a, const void *b)
 {
     const struct prim *p = *(const struct prim *const *)a, *q = *(const struct prim *const *)b;
@@ -515,7 +518,7 @@ static int put_scene(FILE *f, const struct scene *s)
 mcrt_status mc_pov_save(const struct scene *s, const char *path, mc_diag *d)
 {
     struct mc_output out;
-    mcrt_status st = mc_pov_check(s, d);
+    mcrt_status st = pov_check(s, d);
     if (st != MCRT_OK || (st = mc_output_open(&out, path, d)) != MCRT_OK)
         return st;
     if (!put_scene(out.f, s))

@@ -10,9 +10,8 @@
 #define X(kind, name) [kind] = &mc_##name##_shape,
 const struct shape *const mc_shapes[PRIM_KIND_COUNT] = {MC_SHAPES(X)};
 #undef X
-#define X(kind, name) [kind] = #name,
-const char *const mc_shape_names[PRIM_KIND_COUNT + 1] = {MC_SHAPES(X)[PRIM_KIND_COUNT] = NULL};
-#undef X
+const char *const mc_shape_names[PRIM_KIND_COUNT + 1] = {MC_SHAPES(MC_NAMES_IDENT)
+                                                         [PRIM_KIND_COUNT] = NULL};
 
 int mc_prim_intersect_prep(const struct prim *p, const struct ray_prep *q, struct hit *h)
 {

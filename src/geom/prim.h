@@ -6,6 +6,7 @@
 
 #include <stdint.h>
 
+#include "core/names.h"
 #include "geom/ray.h"
 
 /* The shapes, X(KIND, name), in the order the scene language lists them: each is the file
@@ -13,11 +14,8 @@
  * Adding a shape is that file and a line here (and, to export it, one in export/pov.c). */
 #define MC_SHAPES(X)                                                                           \
     X(PRIM_SPHERE, sphere) X(PRIM_QUAD, quad) X(PRIM_DISK, disk) X(PRIM_TRIANGLE, triangle)
-#define MC_SHAPE_ENUM(kind, name) kind,
-enum prim_kind { MC_SHAPES(MC_SHAPE_ENUM) };
-#undef MC_SHAPE_ENUM
-#define MC_SHAPE_ONE(kind, name) +1
-#define PRIM_KIND_COUNT (0 MC_SHAPES(MC_SHAPE_ONE))
+enum prim_kind { MC_SHAPES(MC_NAMES_ENUM) };
+#define PRIM_KIND_COUNT (0 MC_SHAPES(MC_NAMES_COUNT))
 
 enum prim_flags {
     PRIM_TWO_SIDED = 1, /* emits from both sides */

@@ -5,9 +5,8 @@
 #define X(kind, name) [kind] = &mc_##name##_light,
 const struct light_desc *const mc_light_kinds[LIGHT_KIND_COUNT] = {MC_LIGHTS(X)};
 #undef X
-#define X(kind, name) [kind] = #name,
-const char *const mc_light_names[LIGHT_KIND_COUNT + 1] = {MC_LIGHTS(X)[LIGHT_KIND_COUNT] = NULL};
-#undef X
+const char *const mc_light_names[LIGHT_KIND_COUNT + 1] = {MC_LIGHTS(MC_NAMES_IDENT)
+                                                          [LIGHT_KIND_COUNT] = NULL};
 
 double mc_light_power(const struct light_scene *s, const struct light *l)
 {

@@ -13,11 +13,8 @@
  * functions of light/light_impl.h and the descriptor below. Adding a kind is that file and a line
  * here (and, to export it, one in export/pov.c). */
 #define MC_LIGHTS(X) X(LIGHT_POINT, point) X(LIGHT_AREA, area) X(LIGHT_ENVIRONMENT, environment)
-#define MC_LIGHT_ENUM(kind, name) kind,
-enum light_kind { MC_LIGHTS(MC_LIGHT_ENUM) };
-#undef MC_LIGHT_ENUM
-#define MC_LIGHT_ONE(kind, name) +1
-#define LIGHT_KIND_COUNT (0 MC_LIGHTS(MC_LIGHT_ONE))
+enum light_kind { MC_LIGHTS(MC_NAMES_ENUM) };
+#define LIGHT_KIND_COUNT (0 MC_LIGHTS(MC_NAMES_COUNT))
 
 struct light {
     enum light_kind kind;

@@ -39,8 +39,9 @@ void mc_aov_free(struct aov_film *a);
  * colour (0 for a miss), the unit shading normal turned towards the camera (0 for a miss), and
  * the distance along r (0 for a miss). */
 void mc_aov_record(struct aov_pixel *p, const struct scene *s, const struct ray *r);
-/* One first-hit layer (any kind but AOV_VARIANCE) as W·H·3 floats: the mean over each pixel's camera rays (0 without any); the normal
- * is the mean of unit vectors, not renormalised; depth fills all three channels. */
+/* One first-hit layer (any kind but AOV_VARIANCE) as W·H·3 floats: the mean over each pixel's
+ * camera rays (0 without any); the normal is the mean of unit vectors, not renormalised; depth
+ * fills all three channels. */
 void mc_aov_resolve(const struct aov_film *a, enum aov_kind kind, float *rgb);
 
 #endif
