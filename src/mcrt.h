@@ -43,10 +43,15 @@ typedef enum mcrt_status {
 const char *mcrt_version(void);
 /* Short English text for a status code. Static string. */
 const char *mcrt_status_string(mcrt_status status);
-/* The integrators, for listing them: the name of integrator number index (from 0), as
- * mcrt_options.integrator and a scene's integrator method take it, with a one-line description
- * in *description unless description is NULL; NULL past the last. Static strings. */
-const char *mcrt_integrator(int index, const char **description);
+/* The names of one closed set, as a static NULL-terminated array: "integrator" (the values of
+ * mcrt_options.integrator and of a scene's integrator method), "sampler" (the values of
+ * mcrt_options.sampler), "aov" (the layers of mcrt_options.aovs), "filter" and "shape" (the
+ * scene language's film filters and shape blocks), "light" (the kinds of light: point, area,
+ * environment). NULL for any other set. */
+const char *const *mcrt_names(const char *set);
+/* A one-line description of the member name of set, for listing it (mcrt --help); NULL when
+ * the set has none (only "integrator" has them) or name is not in it. Static string. */
+const char *mcrt_describe(const char *set, const char *name);
 
 /* ---- Scenes ---- */
 
@@ -83,7 +88,7 @@ typedef struct mcrt_options {
     int spp;                /* samples per pixel; 0 = the scene's */
     int threads;            /* worker threads; 0 = all cores */
     uint64_t seed;          /* the image is a function of (scene, options, seed) only */
-    /* "path", "direct", "mis", "bsdf" or "light" (see mcrt_integrator); NULL = the scene's */
+    /* "path", "direct", "mis", "bsdf" or "light" (see mcrt_names); NULL = the scene's */
     const char *integrator;
     /* Nonzero: the general code path, with every feature switched on, instead of the one built
      * for what the scene uses. The image is the same in expectation (for checks and benchmarks). */
@@ -98,7 +103,8 @@ typedef struct mcrt_options {
      * estimated variance of each pixel mean), and of the surface each camera ray meets first,
      * averaged over the pixel: "albedo" (the material's colour), "normal" (the unit shading
      * normal facing the camera), "depth" (the distance from the ray's origin, in all three
-     * channels). Each is the layer NAME.R/G/B, and a miss gives 0. NULL = none. */
+     * channels); mcrt_names("aov") lists them. Each is the layer NAME.R/G/B, and a miss gives 0.
+     * NULL = none. */
     const char *aovs;
     /* Render only the pixels crop_x0 <= x < crop_x1, crop_y0 <= y < crop_y1 of the scene's image
      * (each the value it has in the whole image with the same seed). All 0: the whole image. */
@@ -109,7 +115,8 @@ typedef struct mcrt_options {
      * neither, one pass. The image depends on the seed and the number of passes only. */
     double time_budget;
     double target_error;
-    const char *sampler;    /* "random", "stratified" or "sobol"; NULL = the scene's */
+    const char *sampler;    /* one of mcrt_names("sampler"): "random", "stratified", "sobol";
+                             * NULL = the scene's */
     /* Nonzero: adaptive sampling. A uniform first pass, then passes that give each pixel samples
      * in proportion to its estimated error (sigma / sqrt(mean^2 + 0.01)), with a fifth of each
      * pass spread uniformly so that no pixel is starved. spp is then the mean samples per pixel:

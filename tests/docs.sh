@@ -68,35 +68,21 @@ for page in man/mcrt.1 man/mcrt.5 man/libmcrt.3; do
     fi
 done
 
-# ---- mcrt.5: the scene language ----
-blocks="film camera integrator material sphere quad triangle mesh point_light environment"
-keys="width height spp sampler random stratified filter box
-      eye look up fov
-      method path direct max_depth rr_depth
-      diffuse mirror glass ior tint
-      center radius corner edge1 edge2 v0 v1 v2 file scale rotate translate
-      position intensity radiance material emit two_sided flip"
+# ---- mcrt.5 and mcrt.1: the names the code knows ----
+# From the code's own tables, as tests/tools/words prints them: every block kind, key and keyword
+# value of the scene language (the parser's tables) must be in mcrt.5, and every sampler and image
+# layer name (mcrt_names) in mcrt.1.
 t5=$(terms man/mcrt.5)
-# shellcheck disable=SC2086 # word splitting of the lists is intended
-check_words "mcrt.5 documents every block kind" "$t5" $blocks
-# shellcheck disable=SC2086
-check_words "mcrt.5 documents every key and keyword value" "$t5" $keys
-
-# The other way round: every block kind, key and keyword value the parser knows (its tables in
-# src/scene/parse.c: {"name", V_... keys, {"name", KEYS(...) blocks, *_names[] choices).
-parse=src/scene/parse.c
-if [ -f "$parse" ]; then
-    known=$( (grep -oE '\{"[a-z_0-9]+", (V_[A-Z]+|KEYS)' "$parse" | sed 's/{"\([^"]*\)".*/\1/'
-        sed -n 's/.*_names\[\] = {\(.*\)};/\1/p' "$parse" | grep -oE '"[a-z_0-9]+"' | tr -d '"') |
-        sort -u)
-    if [ -z "$known" ]; then
-        fail "no keys found in the tables of $parse (has their layout changed?)"
-    else
-        # shellcheck disable=SC2086
-        check_words "mcrt.5 documents every block kind, key and value in $parse" "$t5" $known
-    fi
+words=$O/tests/words
+if [ -x "$words" ] && "$words" >"$tmp/words" 2>&1 && grep -q '^block ' "$tmp/words"; then
+    # shellcheck disable=SC2046 # word splitting of the lists is intended
+    check_words "mcrt.5 documents every block kind, key and keyword value of the parser" "$t5" \
+        $(awk '$1 == "block" || $1 == "key" || $1 == "value" { print $NF }' "$tmp/words" | sort -u)
+    # shellcheck disable=SC2046
+    check_words "mcrt.1 documents every sampler and image layer" "$(terms man/mcrt.1)" \
+        $(sed -n 's/^\(sampler\|aov\) //p' "$tmp/words" | sort -u)
 else
-    fail "$parse is missing"
+    fail "$words does not list the scene language's words (build the tests first)"
 fi
 
 # ---- mcrt.1 and --help: the options ----
@@ -163,10 +149,10 @@ fields=$(awk '/^typedef struct mcrt_[a-z]+ \{/ { on = 1; next }
 # shellcheck disable=SC2086
 check_words "libmcrt.3 describes every field of mcrt_options and mcrt_stats" "$body3" $fields
 
-# ---- the integrators: every one of the library's table (mcrt --list integrators) is named by
+# ---- the integrators: every one of the library's table (mcrt --list integrator) is named by
 # mcrt.1 (--integrator), mcrt.5 (integrator method), libmcrt.3 and mcrt.h's comment on the
 # integrator option ----
-if [ -x "$MCRT" ] && "$MCRT" --list integrators >"$tmp/integrators" 2>&1 && [ -s "$tmp/integrators" ]; then
+if [ -x "$MCRT" ] && "$MCRT" --list integrator >"$tmp/integrators" 2>&1 && [ -s "$tmp/integrators" ]; then
     integrators=$(cut -f 1 "$tmp/integrators")
     # The comment above mcrt_options' integrator field, through the field's line.
     comment=$(awk '/^ *\/\*/ { c = "" } { c = c " " $0 } /const char \*integrator;/ { print c; exit }' src/mcrt.h)
@@ -179,7 +165,7 @@ if [ -x "$MCRT" ] && "$MCRT" --list integrators >"$tmp/integrators" 2>&1 && [ -s
     # shellcheck disable=SC2086
     check_words "mcrt.h's comment on mcrt_options.integrator names every integrator" "$comment" $integrators
 else
-    fail "mcrt --list integrators lists nothing: $(head -n 1 "$tmp/integrators" 2>/dev/null)"
+    fail "mcrt --list integrator lists nothing: $(head -n 1 "$tmp/integrators" 2>/dev/null)"
 fi
 
 # The EXAMPLES program, as a reader would copy it, compiles against the header.

@@ -9,6 +9,7 @@
 
 #include "api/stats_json.h"
 #include "core/file.h"
+#include "core/names.h"
 #include "export/pov.h"
 #include "integrator/integrator.h"
 #include "io/image.h"
@@ -41,15 +42,6 @@ struct mcrt_render {
 };
 
 const char *mcrt_version(void) { return MCRT_VERSION; }
-
-const char *mcrt_integrator(int index, const char **description)
-{
-    if (index < 0 || index >= INTEGRATOR_COUNT)
-        return NULL;
-    if (description)
-        *description = mc_integrator_get((enum integrator_kind)index)->description;
-    return mc_integrator_name((enum integrator_kind)index);
-}
 
 const char *mcrt_status_string(mcrt_status status)
 {
@@ -249,11 +241,6 @@ static int default_threads(void)
     return n < 1 ? 1 : n > MAX_THREADS ? MAX_THREADS : (int)n;
 }
 
-/* The extra image layers a render can write (mcrt_options.aovs): variance, then the first-hit
- * layers in the order of enum aov_kind. */
-static const char *const aov_names[] = {"variance", "albedo", "normal", "depth"};
-#define NAOVS (sizeof aov_names / sizeof aov_names[0])
-
 /* Whether the comma-separated list names the layer name. */
 static int has_aov(const char *list, const char *name)
 {
@@ -268,9 +255,9 @@ static int has_aov(const char *list, const char *name)
 /* Whether the list asks for a layer that needs first-hit data (all but the variance). */
 static int first_hit_aovs(const char *list)
 {
-    size_t i;
-    for (i = 1; list && i < NAOVS; i++)
-        if (has_aov(list, aov_names[i]))
+    int i;
+    for (i = 0; list && i < AOV_COUNT; i++)
+        if (i != AOV_VARIANCE && has_aov(list, mc_aov_names[i]))
             return 1;
     return 0;
 }
@@ -279,17 +266,14 @@ static int first_hit_aovs(const char *list)
 static mcrt_status check_aovs(const char *list, mc_diag *d)
 {
     const char *p = list;
-    size_t i, len;
+    char names[128];
+    size_t len;
     while (p) {
         const char *comma = strchr(p, ',');
         len = comma ? (size_t)(comma - p) : strlen(p);
-        for (i = 0; i < NAOVS; i++)
-            if (strlen(aov_names[i]) == len && strncmp(p, aov_names[i], len) == 0)
-                break;
-        if (i == NAOVS)
-            return mc_fail(d, MCRT_ERR_INVALID,
-                           "unknown image layer '%.*s' (use variance, albedo, normal, depth)",
-                           (int)len, p);
+        if (mc_names_find(mc_aov_names, p, len) < 0)
+            return mc_fail(d, MCRT_ERR_INVALID, "unknown image layer '%.*s' (use %s)", (int)len, p,
+                           mc_names_join(mc_aov_names, ", ", names, sizeof names));
         p = comma ? comma + 1 : NULL;
     }
     return MCRT_OK;
@@ -311,12 +295,11 @@ static mcrt_status settings(const mcrt_render *r, struct render_settings *rs,
         return mc_fail(d, MCRT_ERR_INVALID, "threads must be between 1 and %d, got %d",
                        MAX_THREADS, o->threads);
     if (o->integrator) {
-        int i = mc_integrator_find(o->integrator);
+        int i = mc_names_find(mc_integrator_names, o->integrator, strlen(o->integrator));
         if (i < 0) {
             char choices[256];
-            mc_integrator_choices(choices, sizeof choices);
             return mc_fail(d, MCRT_ERR_INVALID, "unknown integrator '%s' (use %s)", o->integrator,
-                           choices);
+                           mc_names_join(mc_integrator_names, " or ", choices, sizeof choices));
         }
         method = (enum integrator_kind)i;
     }
@@ -330,16 +313,12 @@ static mcrt_status settings(const mcrt_render *r, struct render_settings *rs,
     rs->user = o->user;
     rs->sampler = s->film.sampler;
     if (o->sampler) {
-        static const char *const names[] = {"random", "stratified", "sobol"};
-        static const enum sampler_kind kinds[] = {SAMPLER_RANDOM, SAMPLER_STRATIFIED,
-                                                  SAMPLER_SOBOL};
-        size_t i;
-        for (i = 0; i < 3 && strcmp(o->sampler, names[i]) != 0; i++)
-            ;
-        if (i == 3)
-            return mc_fail(d, MCRT_ERR_INVALID,
-                           "unknown sampler '%s' (use random, stratified or sobol)", o->sampler);
-        rs->sampler = kinds[i];
+        char names[128];
+        int k = mc_names_find(mc_sampler_names, o->sampler, strlen(o->sampler));
+        if (k < 0)
+            return mc_fail(d, MCRT_ERR_INVALID, "unknown sampler '%s' (use %s)", o->sampler,
+                           mc_names_join(mc_sampler_names, " or ", names, sizeof names));
+        rs->sampler = (enum sampler_kind)k;
     }
     rs->crop_x0 = rs->crop_y0 = 0;
     if (o->crop_x0 || o->crop_y0 || o->crop_x1 || o->crop_y1) {
@@ -431,28 +410,28 @@ const float *mcrt_render_pixels(const mcrt_render *r, int *width, int *height)
     return r ? r->rgb : NULL;
 }
 
-/* The image and the layers named in opt.aovs, in the order of aov_names; the variance is
+/* The image and the layers named in opt.aovs, in the order of mc_aov_names; the variance is
  * computed here, as only saving needs it. */
 static mcrt_status save_layers(mcrt_render *r, const char *path)
 {
-    struct image_layer layers[1 + NAOVS];
-    size_t i, npix = (size_t)r->film.width * (size_t)r->film.height;
-    float *buf = malloc(npix * 3 * NAOVS * sizeof *buf);
-    int n = 1;
+    struct image_layer layers[1 + AOV_COUNT];
+    size_t npix = (size_t)r->film.width * (size_t)r->film.height;
+    float *buf = malloc(npix * 3 * AOV_COUNT * sizeof *buf);
+    int i, n = 1;
     mcrt_status st;
     if (!buf)
         return mc_fail(&r->err, MCRT_ERR_NOMEM, "out of memory for the image layers");
     layers[0].name = NULL;
     layers[0].rgb = r->rgb;
-    for (i = 0; i < NAOVS; i++) {
-        float *rgb = buf + i * npix * 3;
-        if (!has_aov(r->opt.aovs, aov_names[i]))
+    for (i = 0; i < AOV_COUNT; i++) {
+        float *rgb = buf + (size_t)i * npix * 3;
+        if (!has_aov(r->opt.aovs, mc_aov_names[i]))
             continue;
-        if (i == 0)
+        if (i == AOV_VARIANCE)
             mc_film_variance(&r->film, rgb);
         else
-            mc_aov_resolve(&r->aov, (enum aov_kind)(AOV_ALBEDO + (int)i - 1), rgb);
-        layers[n].name = aov_names[i];
+            mc_aov_resolve(&r->aov, (enum aov_kind)i, rgb);
+        layers[n].name = mc_aov_names[i];
         layers[n++].rgb = rgb;
     }
     st = mc_image_write_layers(path, layers, n, r->film.width, r->film.height, &r->err);
@@ -498,3 +477,32 @@ void mcrt_render_stats(const mcrt_render *r, mcrt_stats *out)
 }
 
 int mcrt_format_supported(const char *suffix) { return suffix && mc_image_supported(suffix); }
+
+/* The scene language's shape blocks: the shapes of MC_SHAPES, and meshes of triangles. */
+#define X(kind, name) #name,
+static const char *const shape_blocks[] = {MC_SHAPES(X) "mesh", NULL};
+#undef X
+
+const char *const *mcrt_names(const char *set)
+{
+    static const struct {
+        const char *set;
+        const char *const *names;
+    } sets[] = {{"integrator", mc_integrator_names}, {"sampler", mc_sampler_names},
+                {"aov", mc_aov_names},               {"filter", mc_filter_names},
+                {"shape", shape_blocks},             {"light", mc_light_names}};
+    size_t i;
+    for (i = 0; set && i < sizeof sets / sizeof sets[0]; i++)
+        if (strcmp(set, sets[i].set) == 0)
+            return sets[i].names;
+    return NULL;
+}
+
+const char *mcrt_describe(const char *set, const char *name)
+{
+    int i;
+    if (!set || !name || strcmp(set, "integrator") != 0)
+        return NULL;
+    i = mc_names_find(mc_integrator_names, name, strlen(name));
+    return i < 0 ? NULL : mc_integrator_get((enum integrator_kind)i)->description;
+}

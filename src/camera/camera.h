@@ -11,7 +11,16 @@
 #define MCRT_CAMERA_H
 
 #include "geom/ray.h"
-#include "scene/scene.h"
+
+/* The camera as the scene describes it (scene/parse.c fills it; defaults after each field). */
+struct camera_desc {
+    vec3 eye, look, up;              /* (0 0 5), (0 0 0), (0 1 0) */
+    float fov;                       /* full vertical angle in degrees: 40 */
+    float lens_radius;               /* thin lens; 0 = pinhole (the default) */
+    float focus_distance;            /* along the view direction; 0 = |look - eye| (the default) */
+    float shutter[2];                /* open and close times: 0 1 */
+    vec3 move;                       /* translation of eye and look per unit time: 0 */
+};
 
 struct camera {
     vec3 eye, forward, right, up;  /* orthonormal, right-handed: right = forward × up */

@@ -9,6 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mcrt.h"
+
 void mc_args_init(struct arg_parser *p, int argc, char **argv)
 {
     p->argc = argc;
@@ -176,4 +178,27 @@ int mc_args_window(const char *name, const char *text, int out[4])
     for (i = 0; i < 4; i++)
         out[i] = (int)v[i];
     return 1;
+}
+
+const char *mc_args_names(const char *set, const char *sep, const char *last, char *buf,
+                          size_t size)
+{
+    const char *const *names = mcrt_names(set);
+    size_t i, used = 0;
+    buf[0] = '\0';
+    for (i = 0; names && names[i]; i++) {
+        const char *before = i == 0 ? "" : names[i + 1] ? sep : last;
+        if (used + strlen(before) + strlen(names[i]) >= size)
+            break;
+        used += (size_t)sprintf(buf + used, "%s%s", before, names[i]);
+    }
+    return buf;
+}
+
+int mc_args_is_name(const char *set, const char *text)
+{
+    const char *const *names = mcrt_names(set);
+    while (names && *names && strcmp(*names, text) != 0)
+        names++;
+    return names && *names;
 }

@@ -4,6 +4,7 @@
 #ifndef MCRT_ARGS_H
 #define MCRT_ARGS_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 /* One option a command accepts. A table of them ends with {NULL, 0, 0}. */
@@ -42,5 +43,11 @@ int mc_args_u64(const char *name, const char *text, uint64_t *out);
 int mc_args_real(const char *name, const char *text, int positive, int below_one, double *out);
 /* Parse "x0,y0,x1,y1", integers with 0 <= x0 < x1 and 0 <= y0 < y1, into out; like mc_args_int. */
 int mc_args_window(const char *name, const char *text, int out[4]);
+/* The names of the library's set (mcrt_names) joined into buf, `sep` between them and `last`
+ * before the final one ("a, b or c"); cut short when buf is too small. Returns buf. */
+const char *mc_args_names(const char *set, const char *sep, const char *last, char *buf,
+                          size_t size);
+/* Whether text is one of the names of the library's set. */
+int mc_args_is_name(const char *set, const char *text);
 
 #endif

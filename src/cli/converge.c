@@ -13,6 +13,7 @@
 
 enum { MAX_RUNGS = 32, MAX_VARIANTS = 8 };
 
+/* The help up to the sampler names, which the library lists (mcrt_names). */
 static const char usage[] =
     "usage: mcrt converge [options] SCENE\n"
     "Render SCENE at a ladder of budgets, each with a fresh seed, and write DIR/NAME-converge.csv\n"
@@ -25,7 +26,10 @@ static const char usage[] =
     "  --spp LIST          the ladder in samples per pixel, comma-separated (default: 1,4,16,64)\n"
     "  --times LIST        the ladder in seconds instead (progressive passes of 1 spp)\n"
     "  --compare KEY=LIST  one curve per value: integrator=path,direct, the path tracer's\n"
-    "                      strategies integrator=mis,bsdf,light, or sampler=random,stratified,sobol\n"
+    "                      strategies integrator=mis,bsdf,light, or sampler=";
+/* The help after the sampler names. */
+static const char usage_tail[] =
+    "\n"
     "  -o DIR              the folder to write into (default: the current folder)\n"
     "  --threads N         worker threads; 0 means one per core (default: 0)\n"
     "  --seed N            the first seed (default: 0)\n"
@@ -305,9 +309,13 @@ int mc_cli_converge(int argc, char **argv)
         case OPT_THREADS: ok = mc_args_int("threads", v, 0, 1024, &c.threads); break;
         case OPT_SEED: ok = mc_args_u64("seed", v, &c.seed); break;
         case OPT_QUIET: c.quiet = 1; break;
-        case OPT_HELP:
+        case OPT_HELP: {
+            char names[128];
             fputs(usage, stdout);
+            fputs(mc_args_names("sampler", ",", ",", names, sizeof names), stdout);
+            fputs(usage_tail, stdout);
             return fflush(stdout) == 0 ? STATUS_OK : STATUS_FAIL;
+        }
         }
         if (!ok) {
             for (i = 0; i < c.nvalues; i++)

@@ -16,6 +16,7 @@
 #include "cli/diff.h"
 #include "mcrt.h"
 
+/* The help, in three parts around the lines that list the library's names (print_usage). */
 static const char usage[] =
     "usage: mcrt [render] [options] SCENE\n"
     "       mcrt info SCENE\n"
@@ -39,19 +40,20 @@ static const char usage_tail[] =
     "  --all-features      render with the general code path instead of the one built for the\n"
     "                      features the scene uses (the same image in expectation; slower)\n"
     "  --stats FILE        write statistics as JSON (size, spp, threads, seconds, rays, NaNs,\n"
-    "                      estimated relative MSE, efficiency)\n"
-    "  --aov LIST          extra layers in the EXR image, comma-separated: variance (the\n"
-    "                      estimated variance of each pixel mean), albedo, normal, depth (of\n"
-    "                      the first surface seen); layer NAME has channels NAME.R/G/B\n"
+    "                      estimated relative MSE, efficiency)\n";
+static const char usage_after_aov[] =
+    "                      (see mcrt(1)); layer NAME has channels NAME.R/G/B\n"
     "  --crop x0,y0,x1,y1  render only pixels x0 <= x < x1, y0 <= y < y1 (each as in the\n"
     "                      whole image with the same seed)\n"
     "  --time SECONDS      render passes of --spp samples until the time is spent\n"
     "  --target-error E    render passes of --spp samples until the estimated relative MSE\n"
     "                      is at most E\n"
     "  --adaptive          after a uniform first pass, give each pixel samples in proportion\n"
-    "                      to its estimated error; --spp is then the mean per pixel\n"
-    "  --sampler NAME      random, stratified or sobol (default: the scene's)\n"
-    "  --list integrators  print the integrators, one a line: name, tab, description\n"
+    "                      to its estimated error; --spp is then the mean per pixel\n";
+static const char usage_after_sampler[] =
+    "  --list SET          print the names of a set, one a line (with a tab and a description\n"
+    "                      where the set has them): integrator, sampler, aov, filter, shape,\n"
+    "                      light, material\n"
     "  --quiet             print nothing but errors\n"
     "  --help              print this help and exit\n"
     "  --version           print the version and the built-in image formats, and exit\n"
@@ -64,49 +66,41 @@ static const char usage_tail[] =
     "  130  interrupted (Ctrl-C): the complete passes were written; a second Ctrl-C quits\n"
     "       at once and leaves the output alone\n";
 
-/* --help: the usage with the integrators of the library's table. */
+/* --help: the usage, with the names the library's tables hold (mcrt_names, mcrt_describe). */
 static int print_usage(void)
 {
-    const char *name, *description;
+    const char *const *it = mcrt_names("integrator");
+    char names[128];
     int i, width = 0;
     fputs(usage, stdout);
-    for (i = 0; (name = mcrt_integrator(i, NULL)); i++)
-        width = (int)strlen(name) > width ? (int)strlen(name) : width;
-    for (i = 0; (name = mcrt_integrator(i, &description)); i++)
-        printf("                      %-*s  %s\n", width, name, description);
+    for (i = 0; it[i]; i++)
+        width = (int)strlen(it[i]) > width ? (int)strlen(it[i]) : width;
+    for (i = 0; it[i]; i++)
+        printf("                      %-*s  %s\n", width, it[i], mcrt_describe("integrator", it[i]));
     fputs(usage_tail, stdout);
+    printf("  --aov LIST          extra layers in the EXR image, comma-separated, of: %s\n",
+           mc_args_names("aov", ", ", ", ", names, sizeof names));
+    fputs(usage_after_aov, stdout);
+    printf("  --sampler NAME      %s (default: the scene's)\n",
+           mc_args_names("sampler", ", ", " or ", names, sizeof names));
+    fputs(usage_after_sampler, stdout);
     return fflush(stdout) == 0 ? STATUS_OK : STATUS_FAIL;
 }
 
-/* --list integrators: the same table for scripts (tests/docs.sh). */
-static int print_list(const char *what)
+/* --list SET: one of the library's tables, for scripts (tests/docs.sh). */
+static int print_list(const char *set)
 {
-    const char *name, *description;
+    const char *const *names = mcrt_names(set);
     int i;
-    if (strcmp(what, "integrators") != 0) {
-        fprintf(stderr, "mcrt: --list: expected integrators, got '%s'\n", what);
+    if (!names) {
+        fprintf(stderr, "mcrt: --list: unknown set '%s'\n", set);
         return STATUS_USAGE;
     }
-    for (i = 0; (name = mcrt_integrator(i, &description)); i++)
-        printf("%s\t%s\n", name, description);
-    return fflush(stdout) == 0 ? STATUS_OK : STATUS_FAIL;
-}
-
-/* Whether name is an integrator of the library; if not, say which are. */
-static int check_integrator(const char *name)
-{
-    const char *n, *next;
-    int i;
-    for (i = 0; (n = mcrt_integrator(i, NULL)); i++)
-        if (strcmp(n, name) == 0)
-            return 1;
-    fprintf(stderr, "mcrt: --integrator: expected ");
-    for (i = 0, n = mcrt_integrator(0, NULL); n; n = next) {
-        next = mcrt_integrator(++i, NULL);
-        fprintf(stderr, "%s%s", i == 1 ? "" : next ? ", " : " or ", n);
+    for (i = 0; names[i]; i++) {
+        const char *description = mcrt_describe(set, names[i]);
+        printf(description ? "%s\t%s\n" : "%s\n", names[i], description);
     }
-    fprintf(stderr, ", got '%s'\n", name);
-    return 0;
+    return fflush(stdout) == 0 ? STATUS_OK : STATUS_FAIL;
 }
 
 /* Image formats, for --version and for explaining a format this build lacks. */
@@ -311,8 +305,12 @@ static int parse_render_args(int argc, char **argv, struct render_args *a)
                 return STATUS_USAGE;
             break;
         case OPT_INTEGRATOR:
-            if (!check_integrator(v))
+            if (!mc_args_is_name("integrator", v)) {
+                char names[128];
+                fprintf(stderr, "mcrt: --integrator: expected %s, got '%s'\n",
+                        mc_args_names("integrator", ", ", " or ", names, sizeof names), v);
                 return STATUS_USAGE;
+            }
             a->integrator = v;
             break;
         case OPT_ALL_FEATURES:
@@ -340,10 +338,10 @@ static int parse_render_args(int argc, char **argv, struct render_args *a)
             a->adaptive = 1;
             break;
         case OPT_SAMPLER:
-            if (strcmp(v, "random") != 0 && strcmp(v, "stratified") != 0
-                && strcmp(v, "sobol") != 0) {
-                fprintf(stderr, "mcrt: --sampler: expected random, stratified or sobol, got "
-                                "'%s'\n", v);
+            if (!mc_args_is_name("sampler", v)) {
+                char names[128];
+                fprintf(stderr, "mcrt: --sampler: expected %s, got '%s'\n",
+                        mc_args_names("sampler", ", ", " or ", names, sizeof names), v);
                 return STATUS_USAGE;
             }
             a->sampler = v;

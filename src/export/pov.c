@@ -68,15 +68,20 @@ static int has_area_light(const struct scene *s)
     return 0;
 }
 
-static const char *kind_name(int kind)
-{
-    switch (kind) {
-    case PRIM_TRIANGLE: return "triangle";
-    case PRIM_SPHERE: return "sphere";
-    case PRIM_QUAD: return "quad";
-    default: return "disk";
-    }
-}
+/* What POV-Ray shows of each shape, by enum prim_kind (defined below, after its writers). */
+struct pov_shape {
+    void (*object)(FILE *f, const struct prim *p); /* the object up to its texture */
+    /* As an emitter: the light it is mapped to; NULL: an emitting one is refused. */
+    void (*light)(FILE *f, const struct scene *s, const struct prim *p);
+    int glass;  /* glass on it has a verified inside */
+    int rank;   /* its place in the file's order (that of the references in ref/); 0: no entry,
+                 * the shape is refused */
+};
+static const struct pov_shape pov_shapes[PRIM_KIND_COUNT];
+/* The writer of each kind of light, by enum light_kind (defined below); area lights are written
+ * with their shapes (pov_shapes), the environment is refused, and so is any kind without one. */
+typedef void pov_light_fn(FILE *f, const struct light *l);
+static pov_light_fn *const pov_lights[LIGHT_KIND_COUNT];
 
 static mcrt_status refuse(mc_diag *d, const char *what, const char *why)
 {
@@ -108,10 +113,11 @@ static mcrt_status check_emitter(const struct scene *s, const struct prim *p, mc
 {
     const struct material *m = &s->materials[p->material];
     vec3 c = m->color;
-    if (p->kind != PRIM_QUAD && p->kind != PRIM_SPHERE)
-        return refuse(d, p->kind == PRIM_TRIANGLE ? "an emitting triangle" : "an emitting disk",
-                      "only quads (spotlight-lobed area lights) and spheres (circular area "
-                      "lights) are mapped");
+    char what[64];
+    snprintf(what, sizeof what, "an emitting %s", mc_shape_names[p->kind]);
+    if (!pov_shapes[p->kind].light)
+        return refuse(d, what, "only quads (spotlight-lobed area lights) and spheres (circular "
+                               "area lights) are mapped");
     if (p->flags & PRIM_TWO_SIDED)
         return refuse(d, "a two_sided emitter", "POV-Ray's area-light lobe is one-sided");
     if (p->kind == PRIM_SPHERE && (p->flags & PRIM_FLIP))
@@ -127,7 +133,10 @@ static mcrt_status check_emitter(const struct scene *s, const struct prim *p, mc
     return MCRT_OK;
 }
 
-mcrt_status mc_pov_check(const struct scene *s, mc_diag *d)
+/* Whether a prepared scene can be exported faithfully: MCRT_OK, or MCRT_ERR_UNSUPPORTED with a
+ * message naming the first feature POV-Ray cannot reproduce (the rules are listed in mcrt(1),
+ * `mcrt pov`). */
+static mcrt_status pov_check(const struct scene *s, mc_diag *d)
 {
     size_t i;
     int specular = 0;
@@ -138,18 +147,26 @@ mcrt_status mc_pov_check(const struct scene *s, mc_diag *d)
         return refuse(d, "max_depth 0", "POV-Ray always lights the surfaces it sees");
     if (!path_traced(s))
         return refuse(d, "this integrator method", "only the path tracer's have a mapping");
+    for (i = 0; i < s->light_count; i++)
+        if (s->lights[i].kind != LIGHT_AREA && !pov_lights[s->lights[i].kind]) {
+            char what[64];
+            snprintf(what, sizeof what, "a %s light", mc_light_names[s->lights[i].kind]);
+            return refuse(d, what, "the kind has no POV-Ray mapping");
+        }
     for (i = 0; i < s->prim_count; i++) {
         const struct prim *p = &s->prims[i];
         const struct material *m = &s->materials[p->material];
+        if (!pov_shapes[p->kind].rank)
+            return refuse(d, mc_shape_names[p->kind], "the shape has no POV-Ray mapping");
         if ((st = check_material(m, d)) != MCRT_OK)
             return st;
         if (p->normals >= 0)
             return refuse(d, "smooth-shaded triangles", "interpolated normals are not verified");
         if (p->motion && s->motions[p->motion - 1].omega != 0.0f)
             return refuse(d, "spin", "only translations are exported as clock motion");
-        if (m->kind == MATERIAL_GLASS && p->kind != PRIM_SPHERE) {
+        if (m->kind == MATERIAL_GLASS && !pov_shapes[p->kind].glass) {
             char what[64];
-            snprintf(what, sizeof what, "glass on a %s", kind_name(p->kind));
+            snprintf(what, sizeof what, "glass on a %s", mc_shape_names[p->kind]);
             return refuse(d, what, "only glass spheres have a verified inside");
         }
         if (is_emitter(p) && (st = check_emitter(s, p, d)) != MCRT_OK)
@@ -389,34 +406,51 @@ static void put_point_light(FILE *f, const struct light *l)
     fprintf(f, " fade_distance %g fade_power 2 }\n", FD);
 }
 
+static pov_light_fn *const pov_lights[LIGHT_KIND_COUNT] = {[LIGHT_POINT] = put_point_light};
+
+static void put_sphere(FILE *f, const struct prim *p)
+{
+    fputs("sphere { ", f);
+    put_vec(f, p->p[0]);
+    fprintf(f, ", %.7g ", p->p[1].x);
+}
+
+static void put_quad(FILE *f, const struct prim *p)
+{
+    put_polygon(f, p->p[0], p->p[1], p->p[2]);
+    fputc(' ', f);
+}
+
+static void put_disk(FILE *f, const struct prim *p)
+{
+    fputs("disc { ", f);
+    put_vec(f, p->p[0]);
+    fputs(", ", f);
+    put_vec(f, p->p[1]);
+    fprintf(f, ", %.7g ", p->p[2].x);
+}
+
+static void put_triangle(FILE *f, const struct prim *p)
+{
+    fputs("triangle { ", f);
+    put_vec(f, p->p[0]);
+    fputs(", ", f);
+    put_vec(f, p->p[1]);
+    fputs(", ", f);
+    put_vec(f, p->p[2]);
+    fputc(' ', f);
+}
+
+static const struct pov_shape pov_shapes[PRIM_KIND_COUNT] = {
+    [PRIM_TRIANGLE] = {put_triangle, NULL, 0, 1},
+    [PRIM_SPHERE] = {put_sphere, put_sphere_light, 1, 2},
+    [PRIM_QUAD] = {put_quad, put_quad_light, 0, 3},
+    [PRIM_DISK] = {put_disk, NULL, 0, 4},
+};
+
 static void put_prim(FILE *f, const struct scene *s, const struct prim *p)
 {
-    switch (p->kind) {
-    case PRIM_SPHERE:
-        fputs("sphere { ", f);
-        put_vec(f, p->p[0]);
-        fprintf(f, ", %.7g ", p->p[1].x);
-        break;
-    case PRIM_QUAD:
-        put_polygon(f, p->p[0], p->p[1], p->p[2]);
-        fputc(' ', f);
-        break;
-    case PRIM_DISK:
-        fputs("disc { ", f);
-        put_vec(f, p->p[0]);
-        fputs(", ", f);
-        put_vec(f, p->p[1]);
-        fprintf(f, ", %.7g ", p->p[2].x);
-        break;
-    default:
-        fputs("triangle { ", f);
-        put_vec(f, p->p[0]);
-        fputs(", ", f);
-        put_vec(f, p->p[1]);
-        fputs(", ", f);
-        put_vec(f, p->p[2]);
-        fputc(' ', f);
-    }
+    pov_shapes[p->kind].object(f, p);
     fprintf(f, "texture { T%d }", p->material);
     if (s->materials[p->material].kind == MATERIAL_GLASS)
         fprintf(f, " interior { I%d }", p->material);
@@ -425,16 +459,16 @@ static void put_prim(FILE *f, const struct scene *s, const struct prim *p)
 }
 
 /* The whole file; 0 when out of memory. */
-/* qsort order of primitives: kind, material, flags, motion, normals, then the bytes of the
- * geometry and the emission. Any fixed order would do; what matters is that it is not the BVH's
- * leaf order, in which scene preparation leaves the primitives: the file must not change when only
- * the BVH build does, since references are compared with it byte for byte. */
+/* qsort order of primitives: the kind (its rank in pov_shapes), material, flags, motion, normals,
+ * then the bytes of the geometry and the emission. Any fixed order would do; what matters is that
+ * it is not the BVH's leaf order, in which scene preparation leaves the primitives: the file must
+ * not change when only the BVH build does, since references are compared with it byte for byte. */
 static int prim_order(const void *a, const void *b)
 {
     const struct prim *p = *(const struct prim *const *)a, *q = *(const struct prim *const *)b;
     int c;
     if (p->kind != q->kind)
-        return p->kind < q->kind ? -1 : 1;
+        return pov_shapes[p->kind].rank < pov_shapes[q->kind].rank ? -1 : 1;
     if (p->material != q->material)
         return p->material < q->material ? -1 : 1;
     if (p->flags != q->flags)
@@ -481,16 +515,14 @@ static int put_scene(FILE *f, const struct scene *s)
     }
     free(used);
     for (i = 0; i < s->light_count; i++)
-        if (s->lights[i].kind == LIGHT_POINT)
-            put_point_light(f, &s->lights[i]);
+        if (pov_lights[s->lights[i].kind])
+            pov_lights[s->lights[i].kind](f, &s->lights[i]);
     for (i = 0; i < s->prim_count; i++) {
         const struct prim *p = prims[i];
         if (!is_emitter(p))
             put_prim(f, s, p);
-        else if (p->kind == PRIM_QUAD)
-            put_quad_light(f, s, p);
         else
-            put_sphere_light(f, s, p);
+            pov_shapes[p->kind].light(f, s, p);
     }
     free(prims);
     return 1;
@@ -499,7 +531,7 @@ static int put_scene(FILE *f, const struct scene *s)
 mcrt_status mc_pov_save(const struct scene *s, const char *path, mc_diag *d)
 {
     struct mc_output out;
-    mcrt_status st = mc_pov_check(s, d);
+    mcrt_status st = pov_check(s, d);
     if (st != MCRT_OK || (st = mc_output_open(&out, path, d)) != MCRT_OK)
         return st;
     if (!put_scene(out.f, s))

@@ -13,11 +13,6 @@
  * contrast at most, 0.4/K on average (mapping note, motion-blur row). */
 #define MC_POV_FRAMES 64
 
-/* Whether a prepared scene can be exported faithfully: MCRT_OK, or MCRT_ERR_UNSUPPORTED with a
- * message naming the first feature POV-Ray cannot reproduce (the rules are listed in mcrt(1),
- * `mcrt pov`). */
-mcrt_status mc_pov_check(const struct scene *s, mc_diag *d);
-
 /* Check s, then write it as SDL to path (to path.tmp-PID first, renamed over path when complete,
  * so that a refused or failed export leaves no file and never a half-written one). The second line
  * of the file is a comment "// povray FLAGS" with the pinned command-line flags of the reference

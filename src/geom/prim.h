@@ -1,13 +1,21 @@
-/* prim.h: the geometric primitives (triangle, sphere, quad, disk) that live together in one BVH.
- * A primitive is a plain 64-byte value; the BVH reorders the scene's primitive array in place. */
+/* prim.h: the geometric primitives (the shapes of MC_SHAPES: sphere, quad, disk, triangle) that
+ * live together in one BVH. A primitive is a plain 64-byte value; the BVH reorders the scene's
+ * primitive array in place. */
 #ifndef MCRT_PRIM_H
 #define MCRT_PRIM_H
 
 #include <stdint.h>
 
+#include "core/names.h"
 #include "geom/ray.h"
 
-enum prim_kind { PRIM_TRIANGLE, PRIM_SPHERE, PRIM_QUAD, PRIM_DISK };
+/* The shapes, X(KIND, name), in the order the scene language lists them: each is the file
+ * src/geom/NAME.c, which defines the functions of geom/shape_impl.h and the descriptor below.
+ * Adding a shape is that file and a line here (and, to export it, one in export/pov.c). */
+#define MC_SHAPES(X)                                                                           \
+    X(PRIM_SPHERE, sphere) X(PRIM_QUAD, quad) X(PRIM_DISK, disk) X(PRIM_TRIANGLE, triangle)
+enum prim_kind { MC_SHAPES(MC_NAMES_ENUM) };
+#define PRIM_KIND_COUNT (0 MC_SHAPES(MC_NAMES_COUNT))
 
 enum prim_flags {
     PRIM_TWO_SIDED = 1, /* emits from both sides */
@@ -21,13 +29,42 @@ struct prim {
     int32_t material; /* index into scene->materials */
     int32_t light;    /* index into scene->lights when emitting, else -1 (set by scene prepare) */
     int32_t normals;  /* triangle: index of its 3 shading normals in scene->normals, or -1 */
-    /* triangle: the vertices p[0..2]; front side along (p1-p0)×(p2-p0).
+    /* The shape's parameters, as its file src/geom/NAME.c lays them out:
+     * triangle: the vertices p[0..2]; front side along (p1-p0)×(p2-p0).
      * sphere:   p[0] the centre, p[1].x the radius; front side outward.
      * quad:     p[0] the corner, p[1] edge1, p[2] edge2; front side along edge1×edge2.
      * disk:     p[0] the centre, p[1] the unit normal (the front side), p[2].x the radius. */
     vec3 p[3];
     vec3 emit;        /* emitted radiance (Lambertian), zero when not an emitter */
 };
+
+/* A parameter of a shape's or a light's block in the scene language, `NAME { KEY value ... }`
+ * (man/mcrt.5), which the parser reads into a vec3. */
+enum param_kind {
+    PARAM_POINT,     /* three numbers: a point or a vector */
+    PARAM_DIRECTION, /* three numbers, normalised (in double); zero length is an error */
+    PARAM_LENGTH,    /* one positive number, in .x */
+    PARAM_RGB        /* one number (grey) or three, none negative */
+};
+struct block_param {
+    const char *name;
+    enum param_kind kind;
+    vec3 def;                    /* the value when the key is not given */
+};
+#define MC_BLOCK_PARAMS 4
+/* What a shape is made from, besides the keys every shape takes (material, emit, two_sided, flip,
+ * move). */
+struct shape {
+    const struct block_param *params; /* at most MC_BLOCK_PARAMS */
+    int nparams;
+    /* Fill p->p[] from the parameters' values v[] (defaults applied). Returns NULL, or what is
+     * wrong with them, setting bit i of *blame for each parameter i it concerns. */
+    const char *(*build)(struct prim *p, const vec3 *v, unsigned *blame);
+};
+/* The descriptors, and the names (the scene language's blocks, the shapes in messages), indexed
+ * by enum prim_kind; the names end in NULL (core/names.h). */
+extern const struct shape *const mc_shapes[PRIM_KIND_COUNT];
+extern const char *const mc_shape_names[PRIM_KIND_COUNT + 1];
 
 /* What the BVH reports: distance, primitive index and the primitive's own 2D parameters
  * (triangle: barycentrics of p1 and p2; quad: s, t along edge1, edge2; sphere, disk: unused). */
@@ -122,5 +159,11 @@ void mc_prim_surface(const struct prim *p, const vec3 *normals, const struct ray
 float mc_prim_point_error(const struct prim *p);
 /* A point uniform in area on p (pdf 1/area), with its front-side unit geometric normal. */
 vec3 mc_prim_sample_area(const struct prim *p, vec2 u, vec3 *n);
+
+/* Whether the parallelogram spanned by e1 and e2 has (numerically) no area: |e1 × e2| is at most
+ * 1e-6 |e1| |e2| (a sine below 1e-6, or a zero edge; evaluated in double so that it cannot
+ * overflow), or e1 × e2 evaluated in float has zero or NaN length. Shared by the triangle and quad
+ * checks of the shapes, the camera check of the parser and the OBJ reader. */
+int mc_edges_degenerate(vec3 e1, vec3 e2);
 
 #endif

@@ -54,12 +54,7 @@ mcrt_status mc_ray_integrator_render(const struct integrator *self, void *state,
 MC_INTEGRATORS(MC_INTEGRATOR_DECLARE)
 #undef MC_INTEGRATOR_DECLARE
 
-/* The integrator of each kind, its name (the scene's and mcrt_options' word) and the kind named
- * name (-1 if none). */
+/* The integrator of each kind (its name is mc_integrator_names[kind], scene.h). */
 const struct integrator *mc_integrator_get(enum integrator_kind kind);
-const char *mc_integrator_name(enum integrator_kind kind);
-int mc_integrator_find(const char *name);
-/* The names as a reader's list, "path, direct, ... or light", in buf (truncated to size). */
-void mc_integrator_choices(char *buf, size_t size);
 
 #endif

@@ -7,37 +7,11 @@
 
 #include "render/passes.h"
 
-#define MC_INTEGRATOR_ENTRY(id, name) {#name, &mc_integrator_##name},
-static const struct {
-    const char *name;
-    const struct integrator *it;
-} table[INTEGRATOR_COUNT] = {MC_INTEGRATORS(MC_INTEGRATOR_ENTRY)};
+#define MC_INTEGRATOR_ENTRY(id, name) [INTEGRATOR_##id] = &mc_integrator_##name,
+static const struct integrator *const table[INTEGRATOR_COUNT] = {MC_INTEGRATORS(MC_INTEGRATOR_ENTRY)};
 #undef MC_INTEGRATOR_ENTRY
 
-const struct integrator *mc_integrator_get(enum integrator_kind kind) { return table[kind].it; }
-
-const char *mc_integrator_name(enum integrator_kind kind) { return table[kind].name; }
-
-int mc_integrator_find(const char *name)
-{
-    int i;
-    for (i = 0; i < INTEGRATOR_COUNT; i++)
-        if (strcmp(name, table[i].name) == 0)
-            return i;
-    return -1;
-}
-
-void mc_integrator_choices(char *buf, size_t size)
-{
-    size_t len = 0;
-    int i;
-    buf[0] = '\0';
-    for (i = 0; i < INTEGRATOR_COUNT && len < size; i++) {
-        int n = snprintf(buf + len, size - len, "%s%s",
-                         i == 0 ? "" : i == INTEGRATOR_COUNT - 1 ? " or " : ", ", table[i].name);
-        len += n > 0 ? (size_t)n : 0;
-    }
-}
+const struct integrator *mc_integrator_get(enum integrator_kind kind) { return table[kind]; }
 
 /* A per-ray integrator's pass: the scene and the radiance function it was given. */
 struct ray_pass {

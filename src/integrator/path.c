@@ -53,7 +53,8 @@ static inline vec3 light_sample(const struct scene *s, const struct integrator_d
     vec3 wi, f, target;
     int li = mc_alias_sample(&s->light_select, mc_sampler_1d_double(smp), &pmf);
     vec2 u = mc_sampler_2d(smp);
-    if (li < 0 || !mc_light_sample(s, &s->lights[li], sf->p, time, u, &ls) || v3_is_zero(ls.L))
+    if (li < 0 || !mc_light_sample(&s->light_scene, &s->lights[li], sf->p, time, u, &ls)
+        || v3_is_zero(ls.L))
         return v3s(0.0f);
     wi = frame_to_local(fr, ls.wi);
     f = v3_scale(mc_bsdf_eval(b, wo, wi), fabsf(wi.z));
@@ -110,7 +111,7 @@ static float emitted_weight(const struct scene *s, const struct integrator_desc 
     if (cfg->strategy != STRATEGY_MIS)
         return cfg->strategy == STRATEGY_BSDF ? 1.0f : 0.0f;
     light_pdf = mc_alias_pmf(&s->light_select, (size_t)light)
-                      * mc_light_pdf(s, &s->lights[light], prev_p, r->time, r->d, t, sf);
+                * mc_light_pdf(&s->light_scene, &s->lights[light], prev_p, r->time, r->d, t, sf);
     return power_heuristic(bsdf_pdf, (float)cfg->light_samples * light_pdf);
 }
 

@@ -1,207 +1,41 @@
-/* light.c: sampling the emitters by solid angle, their pdfs for MIS, and power-proportional
- * selection. Area lights are sampled by area (quads, disks, triangles) converted to solid angle
- * with dist²/|cos θl|, spheres by the cone they subtend (pbrt-v4, Sphere::Sample, after Shirley
- * and Wang 1996), the constant environment uniformly over the sphere. A moving emitter is sampled
- * in its time-0 frame (geom/motion.h). */
-#include "light/light.h"
+/* light.c: the light functions of light.h over the kinds of MC_LIGHTS: a switch over the kind
+ * that calls the kind's own function (src/light/NAME.c), and the table of descriptors. */
+#include "light/light_impl.h"
 
-#include "sample/warp.h"
-#include "scene/scene.h"
+#define X(kind, name) [kind] = &mc_##name##_light,
+const struct light_desc *const mc_light_kinds[LIGHT_KIND_COUNT] = {MC_LIGHTS(X)};
+#undef X
+const char *const mc_light_names[LIGHT_KIND_COUNT + 1] = {MC_LIGHTS(MC_NAMES_IDENT)
+                                                          [LIGHT_KIND_COUNT] = NULL};
 
-/* Radius of a sphere bounding the scene (moving primitives over the whole shutter): the
- * environment's power is that of a disk of this radius receiving its radiance (pbrt-v4,
- * UniformInfiniteLight::Phi). */
-static float scene_radius(const struct scene *s)
-{
-    struct aabb b = aabb_union(s->bvh.bounds, s->motion_bvh.bounds);
-    if (!(b.hi.x >= b.lo.x))
-        return 1.0f;
-    return fmaxf(0.5f * v3_length(v3_sub(b.hi, b.lo)), 1e-6f);
-}
-
-double mc_light_power(const struct scene *s, const struct light *l)
+double mc_light_power(const struct light_scene *s, const struct light *l)
 {
     switch (l->kind) {
-    case LIGHT_POINT:
-        return 4.0f * MC_PI * v3_avg(l->intensity);
-    case LIGHT_AREA: {
-        const struct prim *p = &s->prims[l->prim];
-        float sides = (p->flags & PRIM_TWO_SIDED) ? 2.0f : 1.0f;
-        return MC_PI * sides * mc_prim_area(p) * v3_avg(p->emit);
+#define X(kind, name) case kind: return mc_##name##_light_power(s, l);
+        MC_LIGHTS(X)
+#undef X
     }
-    case LIGHT_ENVIRONMENT: {
-        float r = scene_radius(s);
-        return MC_PI * MC_PI * r * r * v3_avg(l->intensity);
-    }
-    }
-    return 0.0f;
+    return 0.0;
 }
 
-/* Whether light leaves primitive p's surface with front normal n toward direction w. */
-static int emits_toward(const struct prim *p, vec3 n, vec3 w)
-{
-    return (p->flags & PRIM_TWO_SIDED) || v3_dot(n, w) > 0.0f;
-}
-
-/* Sphere seen from outside: sample the cone of directions it subtends. The sampled point is
- * found from the angle α at the centre (pbrt-v4 eq. 6.13 ff.), which stays accurate for tiny or
- * far spheres where intersecting the sampled ray would not. 1 − cos θmax is computed as
- * sin²θmax / (1 + cos θmax) to keep precision when the cone is tiny. */
-static int sample_sphere_cone(const struct prim *pr, vec3 p, vec2 u, struct light_sample *out)
-{
-    vec3 c = pr->p[0], to_c = v3_sub(c, p);
-    float r = pr->p[1].x, d2 = v3_length2(to_c), d = sqrtf(d2);
-    float sin2_max = r * r / d2, sin_max = sqrtf(sin2_max);
-    float cos_max = sqrtf(fmaxf(0.0f, 1.0f - sin2_max));
-    float omc = sin2_max / (1.0f + cos_max);            /* 1 − cos θmax */
-    float one_minus_cos = u.x * omc;                    /* 1 − cos θ */
-    float cos_t = 1.0f - one_minus_cos;
-    float sin2_t = one_minus_cos * (2.0f - one_minus_cos);
-    float cos_a = sin2_t / sin_max + cos_t * sqrtf(fmaxf(0.0f, 1.0f - sin2_t / sin2_max));
-    float sin_a = sqrtf(fmaxf(0.0f, 1.0f - cos_a * cos_a));
-    float phi = 2.0f * MC_PI * u.y;
-    frame f = frame_from_normal(v3_scale(to_c, 1.0f / d));
-    vec3 n = frame_to_world(&f, v3(-sin_a * cosf(phi), -sin_a * sinf(phi), -cos_a));
-    vec3 front = (pr->flags & PRIM_FLIP) ? v3_neg(n) : n;
-    vec3 q = v3_madd(c, n, r), w = v3_sub(q, p);
-    float dist = v3_length(w);
-    if (!(dist > 0.0f) || !emits_toward(pr, front, v3_neg(w)))
-        return 0;
-    out->point = q;
-    out->normal = n;
-    out->wi = v3_scale(w, 1.0f / dist);
-    out->dist = dist;
-    out->pdf = 1.0f / (2.0f * MC_PI * omc);
-    out->L = pr->emit;
-    out->delta = 0;
-    return 1;
-}
-
-/* Whether p is clearly outside sphere pr, so that the cone it subtends can be sampled. Points on
- * the sphere itself (shading points of the light's own surface, whose distance to the centre is
- * r within rounding) and inside it are sampled by area instead, which is valid everywhere. Both
- * the sampler and the pdf use this one test, so they always agree. */
-static int sphere_cone_applies(const struct prim *pr, vec3 p)
-{
-    float r2 = pr->p[1].x * pr->p[1].x;
-    return v3_length2(v3_sub(p, pr->p[0])) > r2 * (1.0f + 1e-3f);
-}
-
-static int sample_area(const struct prim *pr, vec3 p, vec2 u, struct light_sample *out)
-{
-    vec3 n, q, w;
-    float dist2, dist, cos_l;
-    if (pr->kind == PRIM_SPHERE && sphere_cone_applies(pr, p))
-        return sample_sphere_cone(pr, p, u, out);
-    q = mc_prim_sample_area(pr, u, &n);
-    w = v3_sub(q, p);
-    dist2 = v3_length2(w);
-    dist = sqrtf(dist2);
-    if (!(dist > 0.0f))
-        return 0;
-    w = v3_scale(w, 1.0f / dist);
-    cos_l = fabsf(v3_dot(n, w));
-    if (!(cos_l > 0.0f) || !emits_toward(pr, n, v3_neg(w)))
-        return 0;
-    out->point = q;
-    out->normal = v3_dot(n, w) < 0.0f ? n : v3_neg(n);
-    out->wi = w;
-    out->dist = dist;
-    out->pdf = dist2 / (cos_l * mc_prim_area(pr));
-    out->L = pr->emit;
-    out->delta = 0;
-    return isfinite(out->pdf);
-}
-
-/* A moving emitter's map from its time-0 frame to the world at `time` (and 1), or 0 for a static
- * one. Rigid maps preserve distances and angles, hence solid angles: the emitter is sampled, and
- * its pdf evaluated, in its time-0 frame with the shading point carried there, and the pdfs hold
- * unchanged in the world. */
-static int light_frame(const struct scene *s, const struct prim *pr, float time, struct rigid *x)
-{
-    if (pr->motion == 0)
-        return 0;
-    mc_motion_at(&s->motions[pr->motion - 1], time, x);
-    return 1;
-}
-
-int mc_light_sample(const struct scene *s, const struct light *l, vec3 p, float time, vec2 u,
-                    struct light_sample *out)
+int mc_light_sample(const struct light_scene *s, const struct light *l, vec3 p, float time,
+                    vec2 u, struct light_sample *out)
 {
     switch (l->kind) {
-    case LIGHT_POINT: {
-        vec3 w = v3_sub(l->position, p);
-        float d2 = v3_length2(w), d = sqrtf(d2);
-        if (!(d > 0.0f))
-            return 0;
-        out->point = l->position;
-        out->normal = v3s(0.0f);
-        out->wi = v3_scale(w, 1.0f / d);
-        out->dist = d;
-        out->L = v3_scale(l->intensity, 1.0f / d2); /* inverse-square law: I / r² */
-        out->pdf = 1.0f;
-        out->delta = 1;
-        return 1;
-    }
-    case LIGHT_AREA: {
-        const struct prim *pr = &s->prims[l->prim];
-        struct rigid x;
-        int moving = light_frame(s, pr, time, &x);
-        if (!sample_area(pr, moving ? rigid_inv_point(&x, p) : p, u, out))
-            return 0;
-        if (moving) {
-            out->wi = rigid_vector(&x, out->wi);
-            out->point = rigid_point(&x, out->point);
-            out->normal = rigid_vector(&x, out->normal);
-        }
-        return 1;
-    }
-    case LIGHT_ENVIRONMENT:
-        out->wi = mc_warp_uniform_sphere(u);
-        out->dist = INFINITY;
-        out->point = out->normal = v3s(0.0f);
-        out->L = l->intensity;
-        out->pdf = mc_warp_uniform_sphere_pdf();
-        out->delta = 0;
-        return 1;
+#define X(kind, name) case kind: return mc_##name##_light_sample(s, l, p, time, u, out);
+        MC_LIGHTS(X)
+#undef X
     }
     return 0;
 }
 
-float mc_light_pdf(const struct scene *s, const struct light *l, vec3 p, float time, vec3 wi,
-                   float t, const struct surface *sf)
+float mc_light_pdf(const struct light_scene *s, const struct light *l, vec3 p, float time,
+                   vec3 wi, float t, const struct surface *sf)
 {
-    const struct prim *pr;
-    struct rigid x;
-    float cos_l;
     switch (l->kind) {
-    case LIGHT_POINT:
-        return 0.0f;
-    case LIGHT_ENVIRONMENT:
-        return mc_warp_uniform_sphere_pdf();
-    case LIGHT_AREA:
-        break;
+#define X(kind, name) case kind: return mc_##name##_light_pdf(s, l, p, time, wi, t, sf);
+        MC_LIGHTS(X)
+#undef X
     }
-    pr = &s->prims[l->prim];
-    /* The cone depends on where p is relative to the sphere: in its time-0 frame. The area pdf
-     * depends only on t and on the angle between sf->ng and wi, which are given in the world and
-     * are the same in either frame. */
-    if (pr->kind == PRIM_SPHERE && light_frame(s, pr, time, &x))
-        p = rigid_inv_point(&x, p);
-    if (pr->kind == PRIM_SPHERE && sphere_cone_applies(pr, p)) {
-        float sin2_max = pr->p[1].x * pr->p[1].x / v3_length2(v3_sub(p, pr->p[0]));
-        float cos_max = sqrtf(fmaxf(0.0f, 1.0f - sin2_max));
-        return (1.0f + cos_max) / (2.0f * MC_PI * sin2_max);
-    }
-    cos_l = fabsf(v3_dot(sf->ng, wi));
-    if (!(cos_l > 0.0f))
-        return 0.0f;
-    return t * t / (cos_l * mc_prim_area(pr));
-}
-
-vec3 mc_light_emitted(const struct prim *pr, const struct surface *sf)
-{
-    if (v3_is_zero(pr->emit) || !(sf->front || (pr->flags & PRIM_TWO_SIDED)))
-        return v3s(0.0f);
-    return pr->emit;
+    return 0.0f;
 }

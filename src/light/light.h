@@ -6,11 +6,15 @@
 
 #include <stddef.h>
 
+#include "geom/motion.h"
 #include "geom/prim.h"
 
-struct scene;
-
-enum light_kind { LIGHT_POINT, LIGHT_AREA, LIGHT_ENVIRONMENT };
+/* The kinds of light, X(KIND, name): each is the file src/light/NAME.c, which defines the
+ * functions of light/light_impl.h and the descriptor below. Adding a kind is that file and a line
+ * here (and, to export it, one in export/pov.c). */
+#define MC_LIGHTS(X) X(LIGHT_POINT, point) X(LIGHT_AREA, area) X(LIGHT_ENVIRONMENT, environment)
+enum light_kind { MC_LIGHTS(MC_NAMES_ENUM) };
+#define LIGHT_KIND_COUNT (0 MC_LIGHTS(MC_NAMES_COUNT))
 
 struct light {
     enum light_kind kind;
@@ -18,6 +22,31 @@ struct light {
     vec3 intensity;  /* point: W/sr; environment: radiance */
     uint32_t prim;   /* area: the emitting primitive */
     double power;    /* scalar power (mean over channels) used for selection; set by prepare */
+};
+
+/* A kind of light in the scene language and in the integrators' eyes. */
+struct light_desc {
+    const char *block;                 /* its block, `block { KEY value ... }`; NULL: none (area
+                                        * lights are made from emitting shapes) */
+    int unique;                        /* at most one block per scene */
+    int delta;                         /* a delta distribution: found by light sampling alone */
+    const struct block_param *params;  /* at most MC_BLOCK_PARAMS */
+    int nparams;
+    /* Fill l (zeroed, kind set) from the parameters' values v[] (defaults applied). */
+    void (*build)(struct light *l, const vec3 *v);
+};
+/* The descriptors and the kinds' names, indexed by enum light_kind; the names end in NULL
+ * (core/names.h). */
+extern const struct light_desc *const mc_light_kinds[LIGHT_KIND_COUNT];
+extern const char *const mc_light_names[LIGHT_KIND_COUNT + 1];
+
+/* What the light functions read of a prepared scene (scene/prepare.c fills it): the primitives
+ * area lights index, the motions moving ones follow, and the radius of a sphere bounding the
+ * scene (moving primitives over the whole shutter), which gives the environment its power. */
+struct light_scene {
+    const struct prim *prims;
+    const struct motion *motions;
+    float radius;
 };
 
 /* A sample toward a light from a shading point. */
@@ -32,17 +61,17 @@ struct light_sample {
 };
 
 /* Scalar power of a light (mean over RGB channels), for selection. */
-double mc_light_power(const struct scene *s, const struct light *l);
+double mc_light_power(const struct light_scene *s, const struct light *l);
 /* Sample a direction toward l from point p at scene time `time` (a moving emitter is sampled where
  * it is then). Returns 0 when there is no sample (pdf 0, or the
  * sampled point shows p its non-emitting side). */
-int mc_light_sample(const struct scene *s, const struct light *l, vec3 p, float time, vec2 u,
-                    struct light_sample *out);
+int mc_light_sample(const struct light_scene *s, const struct light *l, vec3 p, float time,
+                    vec2 u, struct light_sample *out);
 /* Solid-angle pdf that mc_light_sample would have given direction wi from p at `time`, given that
  * the ray p + t·wi first hits light l's primitive at distance t with surface sf (area lights; sf
  * in world space at that time), or escapes (environment). */
-float mc_light_pdf(const struct scene *s, const struct light *l, vec3 p, float time, vec3 wi,
-                   float t, const struct surface *sf);
+float mc_light_pdf(const struct light_scene *s, const struct light *l, vec3 p, float time,
+                   vec3 wi, float t, const struct surface *sf);
 /* Radiance emitted by primitive pr back along the ray that found surface sf (0 when the side the
  * ray arrived on does not emit). */
 vec3 mc_light_emitted(const struct prim *pr, const struct surface *sf);

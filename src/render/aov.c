@@ -5,6 +5,8 @@
 #include <math.h>
 #include <stdlib.h>
 
+const char *const mc_aov_names[AOV_COUNT + 1] = {MC_AOVS(MC_NAMES_ENTRY)[AOV_COUNT] = NULL};
+
 int mc_aov_init(struct aov_film *a, int width, int height)
 {
     size_t n = (size_t)width * (size_t)height;

@@ -1,6 +1,6 @@
 /* distrib.c: piecewise-constant 1D and 2D distributions sampled by inverting a double CDF.
  * Reference: pbrt-v4 (Pharr, Jakob and Humphreys), §A.4.1 PiecewiseConstant1D and §A.4.2
- * PiecewiseConstant2D. */
+ * PiecewiseConstant2D. Used only by its tests until environment maps arrive (see distrib.h). */
 #include "sample/distrib.h"
 
 #include <math.h>

@@ -2,6 +2,8 @@
  * density on an interval (1D, also usable as a discrete distribution over its bins) and on the
  * unit square (2D: a marginal over rows, then a conditional within the row), as environment
  * maps need. After pbrt-v4 PiecewiseConstant1D/2D (Pharr, Jakob and Humphreys, §A.4).
+ * Nothing in the library uses it yet, only its tests (tests/unit/test_distrib.c): it is kept for
+ * the environment maps of a coming change, which sample their texels in proportion to radiance.
  *
  * Conventions shared by both:
  * - Input values must be finite and >= 0 (MCRT_ERR_INVALID otherwise). An all-zero function

@@ -4,6 +4,9 @@
 
 #include <math.h>
 
+const char *const mc_filter_names[FILTER_COUNT + 1] = {MC_FILTERS(MC_NAMES_ENTRY)
+                                                       [FILTER_COUNT] = NULL};
+
 #define GAUSS_SIGMA 0.5f
 #define GAUSS_RADIUS 1.5f
 

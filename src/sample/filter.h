@@ -10,15 +10,21 @@
 #ifndef MCRT_FILTER_H
 #define MCRT_FILTER_H
 
+#include "core/names.h"
 #include "core/vec.h"
 
-/*   box       1 on [-½, ½]²; offset = u − ½, so the film point is x + u exactly.
+/* The filters, X(KIND, NAME): the enum and the scene language's name (film `filter`).
+ *   box       1 on [-½, ½]²; offset = u − ½, so the film point is x + u exactly.
  *   tent      (1 − |x|)(1 − |y|) on [-1, 1]²: separable, each axis by its inverse CDF.
  *   gaussian  radially symmetric, σ = ½ pixel, truncated to the disk of radius 3σ = 1.5 pixels
  *             (the tail beyond holds e^-4.5 ≈ 1.1% of the mass and is cut, not folded back):
  *             p(r) = exp(−r²/2σ²) / (2πσ²(1 − e^-4.5)) for r < 1.5. Sampled exactly: the
  *             truncated Rayleigh radius by its inverse CDF from u.x, the angle 2π·u.y. */
-enum filter_kind { FILTER_BOX, FILTER_TENT, FILTER_GAUSSIAN };
+#define MC_FILTERS(X) X(FILTER_BOX, "box") X(FILTER_TENT, "tent") X(FILTER_GAUSSIAN, "gaussian")
+enum filter_kind { MC_FILTERS(MC_NAMES_ENUM) };
+#define FILTER_COUNT (0 MC_FILTERS(MC_NAMES_COUNT))
+/* The names by kind, NULL at [FILTER_COUNT] (core/names.h). */
+extern const char *const mc_filter_names[FILTER_COUNT + 1];
 
 /* Offset from the pixel centre, in pixels, distributed as the normalised filter; u in [0,1)². */
 vec2 mc_filter_sample(enum filter_kind k, vec2 u);

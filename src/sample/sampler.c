@@ -7,6 +7,9 @@
 
 #include "sample/sobol.h"
 
+const char *const mc_sampler_names[SAMPLER_COUNT + 1] = {MC_SAMPLERS(MC_NAMES_ENTRY)
+                                                         [SAMPLER_COUNT] = NULL};
+
 /* Salt separating the per-dimension keys from the per-sample stream seeds. */
 #define DIM_SALT 0x64696d656e73696fULL /* "dimensio" */
 /* splitmix64's increment, 2^64/φ (Steele, Lea and Flood 2014, "Fast Splittable Pseudorandom

@@ -37,10 +37,20 @@
 
 #include <stdint.h>
 
+#include "core/names.h"
 #include "core/rng.h"
 #include "core/vec.h"
 
-enum sampler_kind { SAMPLER_RANDOM, SAMPLER_STRATIFIED, SAMPLER_SOBOL };
+/* The samplers, X(KIND, NAME): the enum and the name that the scene language (film `sampler`),
+ * the API (mcrt_options.sampler), mcrt --help and mcrt converge --compare read from here. */
+#define MC_SAMPLERS(X)                                                                         \
+    X(SAMPLER_RANDOM, "random")                                                                \
+    X(SAMPLER_STRATIFIED, "stratified")                                                        \
+    X(SAMPLER_SOBOL, "sobol")
+enum sampler_kind { MC_SAMPLERS(MC_NAMES_ENUM) };
+#define SAMPLER_COUNT (0 MC_SAMPLERS(MC_NAMES_COUNT))
+/* The names by kind, NULL at [SAMPLER_COUNT] (core/names.h). */
+extern const char *const mc_sampler_names[SAMPLER_COUNT + 1];
 
 struct sampler {
     enum sampler_kind kind;

@@ -1,6 +1,10 @@
 /* warp.h: maps from the unit square [0,1)^2 to directions and points, each with its pdf.
  * Directions are in the local frame (z up) unless stated; pdfs are per unit solid angle for
- * directions and per unit area for points. */
+ * directions and per unit area for points.
+ * Kept for what is planned, with only their tests using them today: the uniform cone (a sun, a
+ * sphere light seen from afar) and the rejection-sampled disk, which environment maps and their
+ * importance sampling will want; the uniform hemisphere serves the BSDF tests as the plain
+ * reference sampler. */
 #ifndef MCRT_WARP_H
 #define MCRT_WARP_H
 

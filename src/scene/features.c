@@ -24,9 +24,9 @@ unsigned mc_scene_features(const struct scene *s)
     if (s->integrator.light_samples > 1)
         f |= FEATURE_LIGHT_SAMPLES;
     for (i = 0; i < s->light_count; i++)
-        f |= s->lights[i].kind == LIGHT_POINT  ? FEATURE_DELTA_LIGHTS
-             : s->lights[i].kind == LIGHT_AREA ? FEATURE_AREA_LIGHTS
-                                               : FEATURE_ENVIRONMENT;
+        f |= mc_light_kinds[s->lights[i].kind]->delta ? FEATURE_DELTA_LIGHTS
+             : s->lights[i].kind == LIGHT_AREA         ? FEATURE_AREA_LIGHTS
+                                                       : FEATURE_ENVIRONMENT;
     for (i = 0; i < s->prim_count; i++) {
         f |= material_features(&s->materials[s->prims[i].material]);
         if (s->prims[i].kind == PRIM_TRIANGLE)

@@ -12,17 +12,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-int mc_edges_degenerate(vec3 e1, vec3 e2)
-{
-    double ax = e1.x, ay = e1.y, az = e1.z, bx = e2.x, by = e2.y, bz = e2.z;
-    double cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
-    double c2 = cx * cx + cy * cy + cz * cz;
-    double l2 = (ax * ax + ay * ay + az * az) * (bx * bx + by * by + bz * bz);
-    /* The renderer computes the normal in float: it must not underflow to zero there either.
-     * Written as !(a > b) so that a NaN (from an infinite edge) also counts as degenerate. */
-    return !(c2 > 1e-12 * l2) || !(v3_length2(v3_cross(e1, e2)) > 0.0f);
-}
-
 /* A growable array of vec3. */
 struct vec3_array {
     vec3 *v;

@@ -36,10 +36,4 @@ struct obj_stats {
 mcrt_status mc_obj_load(struct scene *s, const struct obj_mesh *m, struct obj_stats *stats,
                         mc_diag *d);
 
-/* Whether the parallelogram spanned by e1 and e2 has (numerically) no area: |e1 × e2| is at most
- * 1e-6 |e1| |e2| (a sine below 1e-6, or a zero edge; evaluated in double so that it cannot
- * overflow), or e1 × e2 evaluated in float has zero or NaN length. Shared by the triangle and quad
- * checks of the parser and the OBJ reader. */
-int mc_edges_degenerate(vec3 e1, vec3 e2);
-
 #endif

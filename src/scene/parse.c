@@ -46,7 +46,7 @@ struct key {
     enum vkind kind;
     double lo, hi;               /* V_REAL, V_INT */
     const char *rule;            /* V_REAL: what the range is, for the message */
-    const char *const *choices;  /* V_CHOICE: NULL-terminated, in enum order */
+    const char *const *choices;  /* V_CHOICE: NULL-terminated, indexed by the enum */
     const char *noun;            /* V_ALBEDO: what the number is, for the message */
 };
 
@@ -73,6 +73,18 @@ struct block_kind {
     int unique;                  /* at most once per scene */
     int named;                   /* `kind NAME { ... }` */
     void (*finish)(struct parser *p, struct block *b);
+    int shape;                   /* a shape of MC_SHAPES: its enum prim_kind; otherwise -1 */
+    int light;                   /* a kind of light of MC_LIGHTS: its enum light_kind; or -1 */
+};
+
+/* The block kinds in the order messages list them: the fixed ones around the shapes of
+ * MC_SHAPES, whose key tables are made from their descriptors (see block_kinds_make). */
+#define MAX_BLOCK_KINDS 16
+struct block_kinds {
+    struct block_kind kind[MAX_BLOCK_KINDS];
+    int count;
+    struct key shape_keys[PRIM_KIND_COUNT][MAX_KEYS];
+    struct key light_keys[LIGHT_KIND_COUNT][MAX_KEYS];
 };
 
 struct block {
@@ -101,7 +113,8 @@ struct parser {
     size_t nrefs, cap_refs;
     struct token *defs;          /* name token of each material this file defined, in order */
     size_t ndefs, cap_defs, first_material;
-    struct token seen[16];       /* first block of each unique kind (line 0: none yet) */
+    struct block_kinds kinds;
+    struct token seen[MAX_BLOCK_KINDS]; /* first block of each unique kind (line 0: none yet) */
 };
 
 /* ---- Errors ---- */
@@ -522,11 +535,6 @@ static const struct token *latest(const struct block *b, int n, const int *keys)
 
 /* ---- Blocks ---- */
 
-static const char *const sampler_names[] = {"random", "stratified", "sobol", NULL};
-static const char *const filter_names[] = {"box", "tent", "gaussian", NULL};
-#define MC_INTEGRATOR_NAME(id, name) #name,
-static const char *const method_names[] = {MC_INTEGRATORS(MC_INTEGRATOR_NAME) NULL};
-#undef MC_INTEGRATOR_NAME
 static const char *const strategy_names[] = {"mis", "bsdf", "light", NULL};
 
 enum { FILM_WIDTH, FILM_HEIGHT, FILM_SPP, FILM_SAMPLER, FILM_FILTER };
@@ -534,8 +542,8 @@ static const struct key film_keys[] = {
     {"width", V_INT, 1, 65536, NULL, NULL, NULL},
     {"height", V_INT, 1, 65536, NULL, NULL, NULL},
     {"spp", V_INT, 1, 16777216, NULL, NULL, NULL},
-    {"sampler", V_CHOICE, 0, 0, NULL, sampler_names, NULL},
-    {"filter", V_CHOICE, 0, 0, NULL, filter_names, NULL},
+    {"sampler", V_CHOICE, 0, 0, NULL, mc_sampler_names, NULL},
+    {"filter", V_CHOICE, 0, 0, NULL, mc_filter_names, NULL},
 };
 
 static void finish_film(struct parser *p, struct block *b)
@@ -612,7 +620,7 @@ static void finish_camera(struct parser *p, struct block *b)
 
 enum { INT_METHOD, INT_MAX_DEPTH, INT_RR_DEPTH, INT_LIGHT_SAMPLES, INT_STRATEGY };
 static const struct key integrator_keys[] = {
-    {"method", V_CHOICE, 0, 0, NULL, method_names, NULL},
+    {"method", V_CHOICE, 0, 0, NULL, mc_integrator_names, NULL},
     {"max_depth", V_INT, 0, 65536, NULL, NULL, NULL},
     {"rr_depth", V_INT, 0, 65536, NULL, NULL, NULL},
     {"light_samples", V_INT, 1, 1024, NULL, NULL, NULL},
@@ -821,88 +829,45 @@ static void add_shape(struct parser *p, const struct block *b, const struct prim
     note_motion(p, b, first, NULL);
 }
 
-enum { SPHERE_CENTER = SHAPE_KEYS_END, SPHERE_RADIUS };
-static const struct key sphere_keys[] = {
-    SHAPE_KEYS,
-    {"center", V_POINT, 0, 0, NULL, NULL, NULL},
-    {"radius", V_REAL, 0, INFINITY, "must be positive", NULL, NULL},
-};
-
-static void finish_sphere(struct parser *p, struct block *b)
+/* The values of the parameters, keys first, first + 1, ... of b, into v: the defaults where not
+ * given, directions normalised. */
+static void param_values(struct parser *p, const struct block *b, int first,
+                         const struct block_param *params, int n, vec3 *v)
 {
-    struct prim pr = shape_proto(b);
-    pr.kind = PRIM_SPHERE;
-    pr.p[0] = vec_or(b, SPHERE_CENTER, v3s(0.0f));
-    pr.p[1] = v3(b->v[SPHERE_RADIUS].set ? (float)b->v[SPHERE_RADIUS].x[0] : 1.0f, 0.0f, 0.0f);
-    add_shape(p, b, &pr);
-}
-
-enum { QUAD_CORNER = SHAPE_KEYS_END, QUAD_EDGE1, QUAD_EDGE2 };
-static const struct key quad_keys[] = {
-    SHAPE_KEYS,
-    {"corner", V_POINT, 0, 0, NULL, NULL, NULL},
-    {"edge1", V_POINT, 0, 0, NULL, NULL, NULL},
-    {"edge2", V_POINT, 0, 0, NULL, NULL, NULL},
-};
-
-/* Default: the 2 x 2 square centred on the origin in the z = 0 plane, facing +z. */
-static void finish_quad(struct parser *p, struct block *b)
-{
-    static const int edges[] = {QUAD_EDGE1, QUAD_EDGE2};
-    struct prim pr = shape_proto(b);
     int i;
-    pr.kind = PRIM_QUAD;
-    pr.p[0] = vec_or(b, QUAD_CORNER, v3(-1.0f, -1.0f, 0.0f));
-    pr.p[1] = vec_or(b, QUAD_EDGE1, v3(2.0f, 0.0f, 0.0f));
-    pr.p[2] = vec_or(b, QUAD_EDGE2, v3(0.0f, 2.0f, 0.0f));
-    for (i = 0; i < 2; i++)
-        if (v3_is_zero(pr.p[1 + i]))
-            fail(p, &b->v[edges[i]].key, "'%s' has zero length", quad_keys[edges[i]].name);
-    if (mc_edges_degenerate(pr.p[1], pr.p[2]))
-        fail(p, latest(b, 2, edges), "quad edges 'edge1' and 'edge2' are parallel");
-    add_shape(p, b, &pr);
+    for (i = 0; i < n; i++) {
+        const struct value *val = &b->v[first + i];
+        char what[96];
+        v[i] = params[i].def;
+        if (!val->set)
+            continue;
+        if (params[i].kind == PARAM_DIRECTION) {
+            snprintf(what, sizeof what, "%s '%s'", b->kind->name, params[i].name);
+            v[i] = unit_of(p, val, what);
+        } else {
+            v[i] = params[i].kind == PARAM_LENGTH ? v3((float)val->x[0], 0.0f, 0.0f) : vec_of(val);
+        }
+    }
 }
 
-enum { DISK_CENTER = SHAPE_KEYS_END, DISK_NORMAL, DISK_RADIUS };
-static const struct key disk_keys[] = {
-    SHAPE_KEYS,
-    {"center", V_POINT, 0, 0, NULL, NULL, NULL},
-    {"normal", V_POINT, 0, 0, NULL, NULL, NULL},
-    {"radius", V_REAL, 0, INFINITY, "must be positive", NULL, NULL},
-};
-
-/* Default: the unit disk at the origin facing +z, like the quad and the triangle. */
-static void finish_disk(struct parser *p, struct block *b)
+/* Any shape of MC_SHAPES: its parameters (after the common keys), defaults applied and
+ * directions normalised, made into a primitive by the shape's own build. */
+static void finish_shape(struct parser *p, struct block *b)
 {
+    const struct shape *sh = mc_shapes[b->kind->shape];
     struct prim pr = shape_proto(b);
-    pr.kind = PRIM_DISK;
-    pr.p[0] = vec_or(b, DISK_CENTER, v3s(0.0f));
-    pr.p[1] = v3(0.0f, 0.0f, 1.0f);
-    if (b->v[DISK_NORMAL].set)
-        pr.p[1] = unit_of(p, &b->v[DISK_NORMAL], "disk 'normal'");
-    pr.p[2] = v3(b->v[DISK_RADIUS].set ? (float)b->v[DISK_RADIUS].x[0] : 1.0f, 0.0f, 0.0f);
-    add_shape(p, b, &pr);
-}
-
-enum { TRI_V0 = SHAPE_KEYS_END, TRI_V1, TRI_V2 };
-static const struct key triangle_keys[] = {
-    SHAPE_KEYS,
-    {"v0", V_POINT, 0, 0, NULL, NULL, NULL},
-    {"v1", V_POINT, 0, 0, NULL, NULL, NULL},
-    {"v2", V_POINT, 0, 0, NULL, NULL, NULL},
-};
-
-/* Default: (-1,-1,0), (1,-1,0), (0,1,0), facing +z. */
-static void finish_triangle(struct parser *p, struct block *b)
-{
-    static const int verts[] = {TRI_V0, TRI_V1, TRI_V2};
-    struct prim pr = shape_proto(b);
-    pr.kind = PRIM_TRIANGLE;
-    pr.p[0] = vec_or(b, TRI_V0, v3(-1.0f, -1.0f, 0.0f));
-    pr.p[1] = vec_or(b, TRI_V1, v3(1.0f, -1.0f, 0.0f));
-    pr.p[2] = vec_or(b, TRI_V2, v3(0.0f, 1.0f, 0.0f));
-    if (mc_edges_degenerate(v3_sub(pr.p[1], pr.p[0]), v3_sub(pr.p[2], pr.p[0])))
-        fail(p, latest(b, 3, verts), "triangle has zero area (its vertices are collinear)");
+    vec3 v[MC_BLOCK_PARAMS];
+    int keys[MC_BLOCK_PARAMS], n = 0, i;
+    unsigned blame = 0;
+    const char *why;
+    param_values(p, b, SHAPE_KEYS_END, sh->params, sh->nparams, v);
+    pr.kind = (uint8_t)b->kind->shape;
+    if ((why = sh->build(&pr, v, &blame)) != NULL) {
+        for (i = 0; i < sh->nparams; i++)
+            if (blame & (1u << i))
+                keys[n++] = SHAPE_KEYS_END + i;
+        fail(p, latest(b, n, keys), "%s", why);
+    }
     add_shape(p, b, &pr);
 }
 
@@ -957,57 +922,117 @@ static void finish_mesh(struct parser *p, struct block *b)
     note_motion(p, b, first, &b->v[MESH_SPIN]);
 }
 
-enum { POINT_POSITION, POINT_INTENSITY };
-static const struct key point_light_keys[] = {
-    {"position", V_POINT, 0, 0, NULL, NULL, NULL},
-    {"intensity", V_RGB, 0, 0, NULL, NULL, NULL},
-};
-
-/* Defaults as pbrt's point light: at the origin, intensity 1. */
-static void finish_point_light(struct parser *p, struct block *b)
+/* Any kind of light of MC_LIGHTS that has a block: its parameters made into a light by the kind's
+ * own build. */
+static void finish_light(struct parser *p, struct block *b)
 {
+    const struct light_desc *ld = mc_light_kinds[b->kind->light];
     struct light l;
+    vec3 v[MC_BLOCK_PARAMS];
+    param_values(p, b, 0, ld->params, ld->nparams, v);
     memset(&l, 0, sizeof l);
-    l.kind = LIGHT_POINT;
-    l.position = vec_or(b, POINT_POSITION, v3s(0.0f));
-    l.intensity = vec_or(b, POINT_INTENSITY, v3s(1.0f));
+    l.kind = (enum light_kind)b->kind->light;
+    ld->build(&l, v);
     if (mc_scene_add_light(p->s, &l) < 0)
         fail_nomem(p);
 }
 
-enum { ENV_RADIANCE };
-static const struct key environment_keys[] = {
-    {"radiance", V_RGB, 0, 0, NULL, NULL, NULL},
-};
-
-/* Default radiance 1: the white sky a scene without lights gets anyway. */
-static void finish_environment(struct parser *p, struct block *b)
-{
-    p->s->has_environment = 1;
-    p->s->environment = vec_or(b, ENV_RADIANCE, v3s(1.0f));
-}
-
 #define KEYS(k) k, (int)(sizeof k / sizeof k[0])
-static const struct block_kind block_kinds[] = {
-    {"film", KEYS(film_keys), 1, 0, finish_film},
-    {"camera", KEYS(camera_keys), 1, 0, finish_camera},
-    {"integrator", KEYS(integrator_keys), 1, 0, finish_integrator},
-    {"material", KEYS(material_keys), 0, 1, finish_material},
-    {"sphere", KEYS(sphere_keys), 0, 0, finish_sphere},
-    {"quad", KEYS(quad_keys), 0, 0, finish_quad},
-    {"disk", KEYS(disk_keys), 0, 0, finish_disk},
-    {"triangle", KEYS(triangle_keys), 0, 0, finish_triangle},
-    {"mesh", KEYS(mesh_keys), 0, 0, finish_mesh},
-    {"point_light", KEYS(point_light_keys), 0, 0, finish_point_light},
-    {"environment", KEYS(environment_keys), 1, 0, finish_environment},
+static const struct block_kind kinds_before_shapes[] = {
+    {"film", KEYS(film_keys), 1, 0, finish_film, -1, -1},
+    {"camera", KEYS(camera_keys), 1, 0, finish_camera, -1, -1},
+    {"integrator", KEYS(integrator_keys), 1, 0, finish_integrator, -1, -1},
+    {"material", KEYS(material_keys), 0, 1, finish_material, -1, -1},
 };
-#define BLOCK_KIND_COUNT (int)(sizeof block_kinds / sizeof block_kinds[0])
+static const struct block_kind mesh_kind = {"mesh", KEYS(mesh_keys), 0, 0, finish_mesh, -1, -1};
+#define N_BEFORE (int)(sizeof kinds_before_shapes / sizeof kinds_before_shapes[0])
+static const struct key common_shape_keys[] = {SHAPE_KEYS};
 
 /* Compile-time checks: struct block holds MAX_KEYS values (the material and the mesh have the most
- * keys), and the parser remembers the first block of up to 16 kinds. */
+ * keys, a shape at most MC_BLOCK_PARAMS besides the common ones), and the parser remembers the
+ * first block of up to MAX_BLOCK_KINDS kinds. */
 typedef char check_max_keys[sizeof mesh_keys / sizeof mesh_keys[0] <= MAX_KEYS ? 1 : -1];
 typedef char check_material_keys[sizeof material_keys / sizeof material_keys[0] <= MAX_KEYS ? 1 : -1];
-typedef char check_kinds[sizeof block_kinds / sizeof block_kinds[0] <= 16 ? 1 : -1];
+typedef char check_shape_keys[SHAPE_KEYS_END + MC_BLOCK_PARAMS <= MAX_KEYS ? 1 : -1];
+typedef char check_kinds[N_BEFORE + PRIM_KIND_COUNT + 1 + LIGHT_KIND_COUNT <= MAX_BLOCK_KINDS ? 1
+                                                                                       : -1];
+
+/* A parameter of a shape or a light as a key of the scene language. */
+static struct key param_key(const struct block_param *bp)
+{
+    struct key k = {NULL, V_POINT, 0, 0, NULL, NULL, NULL};
+    k.name = bp->name;
+    if (bp->kind == PARAM_RGB)
+        k.kind = V_RGB;
+    if (bp->kind == PARAM_LENGTH) {
+        k.kind = V_REAL;
+        k.hi = INFINITY;
+        k.rule = "must be positive";
+    }
+    return k;
+}
+
+/* A block kind whose keys are `first` fixed ones followed by the parameters. */
+static struct block_kind param_kind(const char *name, struct key *keys, const struct key *fixed,
+                                    int first, const struct block_param *params, int nparams)
+{
+    struct block_kind k;
+    int j;
+    if (first) /* memcpy from NULL is undefined even for no bytes */
+        memcpy(keys, fixed, (size_t)first * sizeof *keys);
+    for (j = 0; j < nparams; j++)
+        keys[first + j] = param_key(&params[j]);
+    k.name = name;
+    k.keys = keys;
+    k.nkeys = first + nparams;
+    k.unique = k.named = 0;
+    k.shape = k.light = -1;
+    return k;
+}
+
+/* Every block kind: the fixed ones, the shapes of MC_SHAPES, meshes, then the kinds of light of
+ * MC_LIGHTS that have a block. */
+static void block_kinds_make(struct block_kinds *bk)
+{
+    int i, n = 0;
+    for (i = 0; i < N_BEFORE; i++)
+        bk->kind[n++] = kinds_before_shapes[i];
+    for (i = 0; i < PRIM_KIND_COUNT; i++) {
+        bk->kind[n] = param_kind(mc_shape_names[i], bk->shape_keys[i], common_shape_keys,
+                                 SHAPE_KEYS_END, mc_shapes[i]->params, mc_shapes[i]->nparams);
+        bk->kind[n].finish = finish_shape;
+        bk->kind[n++].shape = i;
+    }
+    bk->kind[n++] = mesh_kind;
+    for (i = 0; i < LIGHT_KIND_COUNT; i++) {
+        const struct light_desc *ld = mc_light_kinds[i];
+        if (!ld->block)
+            continue;
+        bk->kind[n] = param_kind(ld->block, bk->light_keys[i], NULL, 0, ld->params, ld->nparams);
+        bk->kind[n].unique = ld->unique;
+        bk->kind[n].finish = finish_light;
+        bk->kind[n++].light = i;
+    }
+    bk->count = n;
+}
+
+void mc_scene_words(void (*word)(void *user, const char *block, const char *key,
+                                  const char *value),
+                    void *user)
+{
+    struct block_kinds bk;
+    int i, j, c;
+    block_kinds_make(&bk);
+    for (i = 0; i < bk.count; i++) {
+        const struct block_kind *b = &bk.kind[i];
+        word(user, b->name, NULL, NULL);
+        for (j = 0; j < b->nkeys; j++) {
+            word(user, b->name, b->keys[j].name, NULL);
+            for (c = 0; b->keys[j].kind == V_CHOICE && b->keys[j].choices[c]; c++)
+                word(user, b->name, b->keys[j].name, b->keys[j].choices[c]);
+        }
+    }
+}
 
 static int find_block(struct parser *p)
 {
@@ -1019,12 +1044,12 @@ static int find_block(struct parser *p)
         char buf[96];
         fail(p, &p->tok, "expected a block such as 'sphere { }', found %s", describe(&p->tok, buf));
     }
-    for (i = 0; i < BLOCK_KIND_COUNT; i++)
-        if (token_is(&p->tok, block_kinds[i].name))
+    for (i = 0; i < p->kinds.count; i++)
+        if (token_is(&p->tok, p->kinds.kind[i].name))
             return i;
-    for (i = 0; i < BLOCK_KIND_COUNT; i++) {
-        consider(&m, block_kinds[i].name);
-        list_add(list, sizeof list, &n, block_kinds[i].name);
+    for (i = 0; i < p->kinds.count; i++) {
+        consider(&m, p->kinds.kind[i].name);
+        list_add(list, sizeof list, &n, p->kinds.kind[i].name);
     }
     if (m.best)
         fail(p, &p->tok, "unknown block '%.*s' (did you mean '%s'?)", (int)p->tok.len, p->tok.text,
@@ -1038,7 +1063,7 @@ static void read_block(struct parser *p)
     char buf[96];
     int k = find_block(p);
     memset(&b, 0, sizeof b);
-    b.kind = &block_kinds[k];
+    b.kind = &p->kinds.kind[k];
     b.head = p->tok;
     b.xf[0] = b.xf[5] = b.xf[10] = 1.0;
     if (b.kind->unique) {
@@ -1141,6 +1166,7 @@ mcrt_status mc_scene_parse(struct scene *s, const char *text, size_t len, const 
     p.base_dir = base_dir;
     p.d = d;
     p.first_material = s->material_count;
+    block_kinds_make(&p.kinds);
     mc_lex_init(&p.lx, text, len, name, d);
     st = run(&p);
     free(p.refs);

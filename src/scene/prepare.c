@@ -59,12 +59,22 @@ static mcrt_status build_motion_bvh(struct scene *s, mc_diag *d)
     return st;
 }
 
+/* Radius of a sphere bounding the scene, moving primitives over the whole shutter (1 when the
+ * scene is empty): the environment's power is that of a disk of this radius (light.c). */
+static float scene_radius(const struct scene *s)
+{
+    struct aabb b = aabb_union(s->bvh.bounds, s->motion_bvh.bounds);
+    if (!(b.hi.x >= b.lo.x))
+        return 1.0f;
+    return fmaxf(0.5f * v3_length(v3_sub(b.hi, b.lo)), 1e-6f);
+}
+
 mcrt_status mc_scene_prepare(struct scene *s, mc_diag *d)
 {
     size_t i;
-    struct light l;
+    struct light l, env;
     mcrt_status st;
-    int has_light;
+    int has_light, has_env = 0;
     double *power;
     if (s->prepared)
         return MCRT_OK;
@@ -80,7 +90,19 @@ mcrt_status mc_scene_prepare(struct scene *s, mc_diag *d)
         st = build_motion_bvh(s, d);
     if (st != MCRT_OK)
         return st;
-    has_light = s->light_count > 0 || s->has_environment;
+    /* The environment, given or the default sky, goes last: it is found by s->env_light. */
+    memset(&env, 0, sizeof env);
+    env.kind = LIGHT_ENVIRONMENT;
+    env.intensity = v3s(1.0f);
+    for (i = 0; i < s->light_count; i++)
+        if (s->lights[i].kind == LIGHT_ENVIRONMENT) { /* at most one (the parser) */
+            env = s->lights[i];
+            has_env = 1;
+            memmove(&s->lights[i], &s->lights[i + 1], (s->light_count - i - 1) * sizeof env);
+            s->light_count--;
+            break;
+        }
+    has_light = s->light_count > 0 || has_env;
     for (i = 0; i < s->prim_count; i++) {
         struct prim *p = &s->prims[i];
         p->light = -1;
@@ -94,24 +116,19 @@ mcrt_status mc_scene_prepare(struct scene *s, mc_diag *d)
             return mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
         has_light = 1;
     }
-    if (!has_light) {
-        s->has_environment = 1;
-        s->environment = v3s(1.0f);
-    }
-    if (s->has_environment) {
-        l.kind = LIGHT_ENVIRONMENT;
-        l.prim = 0;
-        l.position = v3s(0.0f);
-        l.intensity = s->environment;
-        s->env_light = mc_scene_add_light(s, &l);
+    if (has_env || !has_light) {
+        s->env_light = mc_scene_add_light(s, &env);
         if (s->env_light < 0)
             return mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
     }
     power = malloc((s->light_count ? s->light_count : 1) * sizeof *power);
     if (!power)
         return mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
+    s->light_scene.prims = s->prims;
+    s->light_scene.motions = s->motions;
+    s->light_scene.radius = scene_radius(s);
     for (i = 0; i < s->light_count; i++)
-        power[i] = s->lights[i].power = mc_light_power(s, &s->lights[i]);
+        power[i] = s->lights[i].power = mc_light_power(&s->light_scene, &s->lights[i]);
     st = mc_alias_build(&s->light_select, power, s->light_count, d);
     free(power);
     if (st != MCRT_OK)

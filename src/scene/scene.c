@@ -4,6 +4,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#define MC_INTEGRATOR_NAME(id, name) [INTEGRATOR_##id] = #name,
+const char *const mc_integrator_names[INTEGRATOR_COUNT + 1] = {
+    MC_INTEGRATORS(MC_INTEGRATOR_NAME)[INTEGRATOR_COUNT] = NULL};
+#undef MC_INTEGRATOR_NAME
+
 void mc_scene_init(struct scene *s)
 {
     struct material def;

@@ -7,6 +7,7 @@
 #include <stddef.h>
 
 #include "bsdf/bsdf.h"      /* struct mc_dielectric_ms */
+#include "camera/camera.h"  /* struct camera_desc */
 #include "core/diag.h"
 #include "geom/bvh.h"
 #include "geom/motion.h"
@@ -19,6 +20,9 @@
 #define MC_INTEGRATOR_ENUM(id, name) INTEGRATOR_##id,
 enum integrator_kind { MC_INTEGRATORS(MC_INTEGRATOR_ENUM) INTEGRATOR_COUNT };
 #undef MC_INTEGRATOR_ENUM
+/* The integrators' names by kind, NULL at [INTEGRATOR_COUNT] (core/names.h): the scene's
+ * `method` words and mcrt_options.integrator's. */
+extern const char *const mc_integrator_names[INTEGRATOR_COUNT + 1];
 /* How the path tracer finds light: both ways weighted by MIS, or one way only (for measuring). */
 enum strategy { STRATEGY_MIS, STRATEGY_BSDF, STRATEGY_LIGHT };
 enum material_kind { MATERIAL_DIFFUSE, MATERIAL_MIRROR, MATERIAL_GLASS, MATERIAL_METAL, MATERIAL_PLASTIC };
@@ -27,15 +31,6 @@ struct film_desc {
     int width, height, spp;          /* 512, 512, 16 */
     enum sampler_kind sampler;       /* stratified */
     enum filter_kind filter;         /* box */
-};
-
-struct camera_desc {
-    vec3 eye, look, up;              /* (0 0 5), (0 0 0), (0 1 0) */
-    float fov;                       /* full vertical angle in degrees: 40 */
-    float lens_radius;               /* thin lens; 0 = pinhole (the default) */
-    float focus_distance;            /* along the view direction; 0 = |look - eye| (the default) */
-    float shutter[2];                /* open and close times: 0 1 */
-    vec3 move;                       /* translation of eye and look per unit time: 0 */
 };
 
 struct integrator_desc {
@@ -73,16 +68,16 @@ struct scene {
     struct motion *motions;          /* a moving primitive's motion is motions[prim.motion - 1] */
     size_t motion_count, motion_cap;
 
-    struct light *lights;            /* point lights as parsed; area and environment added by prepare */
+    struct light *lights;            /* as parsed; prepare adds the area lights and puts the
+                                        environment (given or the default sky) last */
     size_t light_count, light_cap;
-    int has_environment;             /* an environment block was given */
-    vec3 environment;                /* its radiance */
 
     /* Built by mc_scene_prepare: prims[0, static_count) are static, in `bvh`; the moving ones
      * follow, in `motion_bvh`, bounded over the whole shutter. */
     struct bvh bvh;
     struct bvh motion_bvh;
     size_t static_count;
+    struct light_scene light_scene;  /* what the light functions read: prims, motions, radius */
     struct mc_alias light_select;    /* chooses a light in proportion to its power */
     int env_light;                   /* index of the environment light or -1 */
     int prepared;
@@ -120,5 +115,12 @@ void mc_scene_surface(const struct scene *s, const struct ray *r, const struct h
  * left in a state that mc_scene_free handles. */
 mcrt_status mc_scene_parse(struct scene *s, const char *text, size_t len, const char *name,
                            const char *base_dir, mc_diag *d);
+
+/* Every word of the scene language, from the parser's tables: word(user, BLOCK, NULL, NULL) for
+ * each block kind, word(user, BLOCK, KEY, NULL) for each of its keys and word(user, BLOCK, KEY,
+ * VALUE) for each value a choice key takes (tests/tools/words lists them for tests/docs.sh). */
+void mc_scene_words(void (*word)(void *user, const char *block, const char *key,
+                                  const char *value),
+                    void *user);
 
 #endif

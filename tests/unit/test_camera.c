@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "camera/camera.h"
+#include "scene/scene.h"
 #include "chi2.h"
 #include "mcrt.h"
 #include "render_util.h"

@@ -120,7 +120,7 @@ static struct est irradiance_light(const struct scene *s, vec3 p, vec3 n, float 
         vec2 u;
         u.x = pcg32_float(&g);
         u.y = pcg32_float(&g);
-        if (li >= 0 && mc_light_sample(s, &s->lights[li], p, time, u, &ls)
+        if (li >= 0 && mc_light_sample(&s->light_scene, &s->lights[li], p, time, u, &ls)
             && (c = v3_dot(ls.wi, n)) > 0.0f) {
             struct ray r = make_ray(p, ls.wi, isinf(ls.dist) ? INFINITY : ls.dist * (1.0f - 1e-4f),
                                     time);
@@ -367,18 +367,18 @@ static void same_samples(const char *what, const struct scene *a, float ta, cons
         struct light_sample la, lb;
         size_t best = 0;
         double best_d = INFINITY;
-        if (!mc_light_sample(a, &a->lights[i], ORIGIN, ta, u0, &la))
+        if (!mc_light_sample(&a->light_scene, &a->lights[i], ORIGIN, ta, u0, &la))
             continue;
         for (j = 0; j < b->light_count; j++)
-            if (mc_light_sample(b, &b->lights[j], ORIGIN, tb, u0, &lb)
+            if (mc_light_sample(&b->light_scene, &b->lights[j], ORIGIN, tb, u0, &lb)
                 && v3_length(v3_sub(la.point, lb.point)) < best_d) {
                 best_d = v3_length(v3_sub(la.point, lb.point));
                 best = j;
             }
         for (k = 0; k < 64; k++) {
             vec2 u = v2((k % 8 + 0.5f) / 8.0f, (k / 8 + 0.5f) / 8.0f);
-            int sa = mc_light_sample(a, &a->lights[i], ORIGIN, ta, u, &la),
-                sb = mc_light_sample(b, &b->lights[best], ORIGIN, tb, u, &lb);
+            int sa = mc_light_sample(&a->light_scene, &a->lights[i], ORIGIN, ta, u, &la),
+                sb = mc_light_sample(&b->light_scene, &b->lights[best], ORIGIN, tb, u, &lb);
             if (!sa || !sb) {
                 ok &= sa == sb;
                 continue;
@@ -434,11 +434,13 @@ static double pdf_along(const struct scene *s, const struct light *l, vec3 p, fl
     struct surface sf;
     h.t = INFINITY;
     if (!mc_scene_intersect(s, &r, &h))
-        return l->kind == LIGHT_ENVIRONMENT ? mc_light_pdf(s, l, p, time, w, INFINITY, NULL) : 0.0;
+        return l->kind == LIGHT_ENVIRONMENT
+                   ? mc_light_pdf(&s->light_scene, l, p, time, w, INFINITY, NULL)
+                   : 0.0;
     if (l->kind != LIGHT_AREA || h.prim != l->prim)
         return 0.0;
     mc_scene_surface(s, &r, &h, &sf);
-    return mc_light_pdf(s, l, p, time, w, h.t, &sf);
+    return mc_light_pdf(&s->light_scene, l, p, time, w, h.t, &sf);
 }
 
 /* What a chi-square test of one light needs: the scene (whose first light is tested), the shading
@@ -457,7 +459,7 @@ static int sample_wi(const struct light_ctx *c, pcg32 *g, vec3 *wi)
     vec2 u;
     u.x = pcg32_float(g);
     u.y = pcg32_float(g);
-    if (!mc_light_sample(c->s, c->l, c->p, c->time, u, &ls))
+    if (!mc_light_sample(&c->s->light_scene, c->l, c->p, c->time, u, &ls))
         return 0;
     *wi = ls.wi;
     return 1;
@@ -621,7 +623,7 @@ static void mis_case(const char *what, const char *text, float time)
         double q, rel;
         u.x = pcg32_float(&g);
         u.y = pcg32_float(&g);
-        if (li < 0 || !mc_light_sample(&s, &s.lights[li], p, time, u, &ls))
+        if (li < 0 || !mc_light_sample(&s.light_scene, &s.lights[li], p, time, u, &ls))
             continue;
         n++;
         if (s.lights[li].kind == LIGHT_AREA) {
@@ -708,7 +710,8 @@ static void test_selection(void)
                     : pr->kind == PRIM_SPHERE ? 3
                                               : 4;
         }
-        T_NEAR(mc_light_power(&s, l), phi[which], 1e-5 * phi[which], "power of light %d", which);
+        T_NEAR(mc_light_power(&s.light_scene, l), phi[which], 1e-5 * phi[which],
+               "power of light %d", which);
         T_NEAR(mc_alias_pmf(&s.light_select, (size_t)k), phi[which] / total, 1e-6,
                "selection probability of light %d", which);
         count[k] = 0.0;

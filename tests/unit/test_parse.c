@@ -73,7 +73,7 @@ static void test_minimal(void)
                 && s.film.sampler == SAMPLER_STRATIFIED,
             "film defaults kept");
     T_CHECK(s.integrator.max_depth == -1 && s.integrator.rr_depth == 5, "integrator defaults");
-    T_CHECK(s.light_count == 0 && !s.has_environment, "no lights");
+    T_CHECK(s.light_count == 0, "no lights");
     mc_scene_free(&s);
 }
 
@@ -143,15 +143,16 @@ static void test_full(void)
                     && p->material == 4 && p->flags == PRIM_TWO_SIDED && p->normals == -1,
                 "triangle");
     }
-    T_CHECK(s.light_count == 2, "%zu lights", s.light_count);
-    if (s.light_count == 2) {
+    T_CHECK(s.light_count == 3, "%zu lights", s.light_count);
+    if (s.light_count == 3) {
         T_CHECK(s.lights[0].kind == LIGHT_POINT && near3(s.lights[0].position, 0, 10, 0)
                     && near3(s.lights[0].intensity, 100, 100, 100),
                 "point light");
         T_CHECK(near3(s.lights[1].position, 0, 0, 0) && near3(s.lights[1].intensity, 1, 1, 1),
                 "point light defaults");
+        T_CHECK(s.lights[2].kind == LIGHT_ENVIRONMENT && near3(s.lights[2].intensity, .1f, .2f, .3f),
+                "environment");
     }
-    T_CHECK(s.has_environment && near3(s.environment, .1f, .2f, .3f), "environment");
     mc_scene_free(&s);
 }
 

@@ -216,9 +216,10 @@ static void test_method_is_option(void)
                         "quad { corner -5 -1 5 edge1 10 0 0 edge2 0 0 -10 }\n"
                         "sphere { center 0 4 0 radius 0.5 emit 10 }\n"
                         "point_light { position 2 3 2 intensity 5 }\n";
+    const char *const *names = mcrt_names("integrator");
     const char *name;
     int i;
-    for (i = 0; (name = mcrt_integrator(i, NULL)); i++) {
+    for (i = 0; (name = names[i]); i++) {
         char text[1024];
         struct img a, b;
         snprintf(text, sizeof text, "integrator { method %s }\n%s", name, scene);
@@ -232,7 +233,9 @@ static void test_method_is_option(void)
         free(a.rgb);
         free(b.rgb);
     }
-    T_CHECK(i >= 5 && !mcrt_integrator(-1, NULL), "%d integrators", i);
+    T_CHECK(i >= 5 && mcrt_describe("integrator", "path") && !mcrt_describe("integrator", "bogus")
+                && !mcrt_describe("sampler", "random"),
+            "%d integrators, described", i);
 }
 
 int main(void)

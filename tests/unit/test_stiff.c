@@ -863,7 +863,8 @@ static void case_many_lights(void)
         struct light_sample ls;
         double y = 0.0;
         vec2 u = v2(pcg32_float(&rng), pcg32_float(&rng));
-        if (li >= 0 && mc_light_sample(&s, &s.lights[li], x, 0.0f, u, &ls) && ls.pdf > 0.0f)
+        if (li >= 0 && mc_light_sample(&s.light_scene, &s.lights[li], x, 0.0f, u, &ls)
+            && ls.pdf > 0.0f)
             y = ls.L.y * fmax(0.0, v3_dot(nrm, ls.wi)) / ((double)pmf * ls.pdf);
         a += y;
         a2 += y * y;
@@ -878,7 +879,7 @@ static void case_many_lights(void)
             struct light_sample ls;
             double y = 0.0;
             vec2 u = v2(pcg32_float(&rng), pcg32_float(&rng));
-            if (mc_light_sample(&s, &s.lights[i], x, 0.0f, u, &ls) && ls.pdf > 0.0f)
+            if (mc_light_sample(&s.light_scene, &s.lights[i], x, 0.0f, u, &ls) && ls.pdf > 0.0f)
                 y = ls.L.y * fmax(0.0, v3_dot(nrm, ls.wi)) / ls.pdf;
             m += y;
             m2 += y * y;
