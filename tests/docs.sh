@@ -1,6 +1,6 @@
 #!/bin/sh
 # docs.sh: the manuals, README and scenes checked against the code. groff lints each page and man
-# renders it; mcrt.5 names every block kind and key of the scene language (the specified ones and
+# renders it; mcrt.5 names every block kind and key of the scene language (the specified ones, the material kinds of the material table and
 # those in the parser's tables); mcrt.1 and `mcrt --help` name every option (and mcrt.1 every
 # option --help shows); libmcrt.3 gives every function of src/mcrt.h with the header's exact
 # prototype, every status code and struct field, and an example that compiles; versions agree;
@@ -82,20 +82,25 @@ check_words "mcrt.5 documents every block kind" "$t5" $blocks
 check_words "mcrt.5 documents every key and keyword value" "$t5" $keys
 
 # The other way round: every block kind, key and keyword value the parser knows (its tables in
-# src/scene/parse.c: {"name", V_... keys, {"name", KEYS(...) blocks, *_names[] choices).
+# src/scene/parse.c: {"name", V_... keys, {"name", KEYS(...) blocks, *_names[] choices), and every
+# material kind of the material table (the MC_MATERIAL lines of src/bsdf/materials.def).
 parse=src/scene/parse.c
-if [ -f "$parse" ]; then
+materials=src/bsdf/materials.def
+if [ -f "$parse" ] && [ -f "$materials" ]; then
     known=$( (grep -oE '\{"[a-z_0-9]+", (V_[A-Z]+|KEYS)' "$parse" | sed 's/{"\([^"]*\)".*/\1/'
         sed -n 's/.*_names\[\] = {\(.*\)};/\1/p' "$parse" | grep -oE '"[a-z_0-9]+"' | tr -d '"') |
         sort -u)
-    if [ -z "$known" ]; then
-        fail "no keys found in the tables of $parse (has their layout changed?)"
+    kinds=$(sed -n 's/^MC_MATERIAL(\([a-z_0-9]*\),.*/\1/p' "$materials")
+    if [ -z "$known" ] || [ -z "$kinds" ]; then
+        fail "no keys found in the tables of $parse or $materials (has their layout changed?)"
     else
         # shellcheck disable=SC2086
         check_words "mcrt.5 documents every block kind, key and value in $parse" "$t5" $known
+        # shellcheck disable=SC2086
+        check_words "mcrt.5 documents every material kind of $materials" "$t5" $kinds
     fi
 else
-    fail "$parse is missing"
+    fail "$parse or $materials is missing"
 fi
 
 # ---- mcrt.1 and --help: the options ----

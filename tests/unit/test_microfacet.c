@@ -9,7 +9,7 @@
 #include "bsdf_util.h"
 #include "chi2.h"
 #include "sample/warp.h"
-#include "scene/scene.h"
+#include "bsdf/material.h"
 #include "t.h"
 
 /* Chi-square tests this binary expects to accept (Šidák correction): see test_chi2. */
@@ -19,7 +19,7 @@ static const double PI = 3.14159265358979323846;
 
 /* A prepared material as the scene makes them, and its BSDF. The BSDF refers to its material (rough
  * glass's compensation table), so materials live in a pool for the whole run. */
-static struct bsdf make(enum material_kind kind, vec3 color, float ior, float alpha)
+static struct bsdf make(const struct mc_material_kind *kind, vec3 color, float ior, float alpha)
 {
     static struct material pool[1024];
     static size_t used;
@@ -40,7 +40,7 @@ static struct bsdf make(enum material_kind kind, vec3 color, float ior, float al
 /* Gold at about 650, 550, 450 nm (Johnson and Christy 1972, as tabulated by pbrt). */
 static struct bsdf make_gold(float alpha)
 {
-    struct bsdf b = make(MATERIAL_METAL, v3s(0.0f), 1.0f, alpha);
+    struct bsdf b = make(MC_MATERIAL_KIND(metal), v3s(0.0f), 1.0f, alpha);
     b.eta = v3(0.166f, 0.428f, 1.38f);
     b.k = v3(3.15f, 2.35f, 1.87f);
     return b;
@@ -295,7 +295,7 @@ static void run_chi2_glass(float alpha, double theta)
     struct bsdf_case c;
     struct chi2_dir_spec s;
     char name[96];
-    c.b = make(MATERIAL_GLASS, v3(1.0f, 0.9f, 0.8f), 1.5f, alpha);
+    c.b = make(MC_MATERIAL_KIND(glass), v3(1.0f, 0.9f, 0.8f), 1.5f, alpha);
     c.wo = dir(theta, 0.7);
     snprintf(name, sizeof name, "glass ior 1.5, alpha %g, wo at %.2f deg", alpha, theta);
     s = chi2_dir_spec_of(name, bsdf_case_sample, bsdf_case_pdf, &c, 0.0);
@@ -324,7 +324,7 @@ static void test_chi2(void)
     for (i = 0; i < sizeof glass / sizeof glass[0]; i++)
         run_chi2_glass(glass[i].alpha, glass[i].theta < 0.0 ? theta_for_jump(-glass[i].theta) : glass[i].theta);
     for (i = 0; i < sizeof plastic / sizeof plastic[0]; i++)
-        run_chi2("plastic ior 1.5", make(MATERIAL_PLASTIC, v3(0.8f, 0.4f, 0.1f), 1.5f, plastic[i].alpha),
+        run_chi2("plastic ior 1.5", make(MC_MATERIAL_KIND(plastic), v3(0.8f, 0.4f, 0.1f), 1.5f, plastic[i].alpha),
                  plastic[i].theta);
     T_CHECK(chi2_count == CHI2_TESTS, "CHI2_TESTS is %d but %d tests ran", CHI2_TESTS, chi2_count);
 }
@@ -348,7 +348,7 @@ static void test_consistency(void)
         pcg32_seed(&rng, 100 + (uint64_t)m, 0);
         for (a = 0; a < sizeof alphas / sizeof alphas[0]; a++) {
             struct bsdf b = m == 0 ? make_gold(alphas[a])
-                                   : make(m == 1 ? MATERIAL_GLASS : MATERIAL_PLASTIC, v3(0.9f, 0.6f, 0.3f), 1.5f,
+                                   : make(m == 1 ? MC_MATERIAL_KIND(glass) : MC_MATERIAL_KIND(plastic), v3(0.9f, 0.6f, 0.3f), 1.5f,
                                           alphas[a]);
             int i;
             for (i = 0; i < 50000; i++) {
@@ -356,10 +356,10 @@ static void test_consistency(void)
                 struct bsdf_sample s;
                 float pdf, etap = 1.0f;
                 int c;
-                if (!mc_bsdf_sample(&b, wo, pcg32_float(&rng), rand2(&rng), &s) || s.delta)
+                if (!mc_bsdf_sample(&b, wo, pcg32_float(&rng), rand2(&rng), MC_RADIANCE, &s) || s.delta)
                     continue;
                 n++;
-                f = mc_bsdf_eval(&b, wo, s.wi);
+                f = mc_bsdf_eval(&b, wo, s.wi, MC_RADIANCE);
                 pdf = mc_bsdf_pdf(&b, wo, s.wi);
                 if (!finite_sample(&s) || s.pdf != pdf) {
                     bad++;
@@ -404,12 +404,12 @@ static void test_reciprocity(void)
     for (m = 0; m < 3; m++)
         for (a = 0; a < sizeof alphas / sizeof alphas[0]; a++) {
             struct bsdf b = m == 0 ? make_gold(alphas[a])
-                                   : make(m == 1 ? MATERIAL_GLASS : MATERIAL_PLASTIC, v3(0.9f, 0.6f, 0.3f), 1.5f,
+                                   : make(m == 1 ? MC_MATERIAL_KIND(glass) : MC_MATERIAL_KIND(plastic), v3(0.9f, 0.6f, 0.3f), 1.5f,
                                           alphas[a]);
             int i, c;
             for (i = 0; i < 50000; i++) {
                 vec3 wo = mc_warp_uniform_sphere(rand2(&rng)), wi = mc_warp_uniform_sphere(rand2(&rng));
-                vec3 f = mc_bsdf_eval(&b, wo, wi), g = mc_bsdf_eval(&b, wi, wo);
+                vec3 f = mc_bsdf_eval(&b, wo, wi, MC_RADIANCE), g = mc_bsdf_eval(&b, wi, wo, MC_RADIANCE);
                 nonzero[m] += !v3_is_zero(f);
                 if (wo.z * wi.z > 0.0f) {
                     bad[m] += f.x != g.x || f.y != g.y || f.z != g.z;
@@ -448,7 +448,7 @@ static void test_back_face(void)
     for (m = 0; m < 2; m++)
         for (a = 0; a < sizeof alphas / sizeof alphas[0]; a++) {
             struct bsdf b =
-                m == 0 ? make_gold(alphas[a]) : make(MATERIAL_PLASTIC, v3(0.5f, 0.5f, 0.5f), 1.5f, alphas[a]);
+                m == 0 ? make_gold(alphas[a]) : make(MC_MATERIAL_KIND(plastic), v3(0.5f, 0.5f, 0.5f), 1.5f, alphas[a]);
             int i;
             for (i = 0; i < 20000; i++) {
                 vec3 wo = mc_warp_uniform_hemisphere(rand2(&rng)), wi = mc_warp_uniform_hemisphere(rand2(&rng));
@@ -456,8 +456,8 @@ static void test_back_face(void)
                 float uc = pcg32_float(&rng);
                 vec2 u = rand2(&rng);
                 struct bsdf_sample s, t;
-                int ok = mc_bsdf_sample(&b, wo, uc, u, &s), okb = mc_bsdf_sample(&b, wob, uc, u, &t);
-                vec3 f = mc_bsdf_eval(&b, wo, wi), fb = mc_bsdf_eval(&b, wob, wib);
+                int ok = mc_bsdf_sample(&b, wo, uc, u, MC_RADIANCE, &s), okb = mc_bsdf_sample(&b, wob, uc, u, MC_RADIANCE, &t);
+                vec3 f = mc_bsdf_eval(&b, wo, wi, MC_RADIANCE), fb = mc_bsdf_eval(&b, wob, wib, MC_RADIANCE);
                 bad += f.x != fb.x || f.y != fb.y || f.z != fb.z ||
                        mc_bsdf_pdf(&b, wo, wi) != mc_bsdf_pdf(&b, wob, wib) || ok != okb;
                 if (ok && okb)
@@ -487,14 +487,14 @@ static struct albedo directional_albedo(const struct bsdf *b, vec3 wo, int n, ui
         struct bsdf_sample s;
         vec3 wi = mc_warp_uniform_sphere(rand2(&rng));
         double x = 0.0, y;
-        if (mc_bsdf_sample(b, wo, pcg32_float(&rng), rand2(&rng), &s)) {
+        if (mc_bsdf_sample(b, wo, pcg32_float(&rng), rand2(&rng), MC_RADIANCE, &s)) {
             x = v3_avg(s.weight) * s.eta * s.eta;
             r.max_weight = fmax(r.max_weight, x);
         }
         s1 += x;
         s2 += x * x;
-        y = v3_avg(mc_bsdf_eval(b, wo, wi)) * fabsf(wi.z) * 4.0 * PI;
-        if (wo.z * wi.z < 0.0f && b->kind == MATERIAL_GLASS)
+        y = v3_avg(mc_bsdf_eval(b, wo, wi, MC_RADIANCE)) * fabsf(wi.z) * 4.0 * PI;
+        if (wo.z * wi.z < 0.0f && b->ops == MC_MATERIAL_KIND(glass)->ops)
             y *= (wo.z > 0.0f ? b->ior * b->ior : 1.0 / (b->ior * b->ior));
         u1 += y;
         u2 += y * y;
@@ -533,9 +533,9 @@ static void test_energy(void)
     size_t a, t;
     uint64_t seed = 400;
     for (a = 0; a < sizeof alphas / sizeof alphas[0]; a++) {
-        struct bsdf metal = make(MATERIAL_METAL, v3s(1.0f), 1.0f, alphas[a]); /* R = 0.9999 */
-        struct bsdf glass = make(MATERIAL_GLASS, v3s(1.0f), 1.5f, alphas[a]);
-        struct bsdf plastic = make(MATERIAL_PLASTIC, v3s(1.0f), 1.5f, alphas[a]);
+        struct bsdf metal = make(MC_MATERIAL_KIND(metal), v3s(1.0f), 1.0f, alphas[a]); /* R = 0.9999 */
+        struct bsdf glass = make(MC_MATERIAL_KIND(glass), v3s(1.0f), 1.5f, alphas[a]);
+        struct bsdf plastic = make(MC_MATERIAL_KIND(plastic), v3s(1.0f), 1.5f, alphas[a]);
         for (t = 0; t < sizeof thetas / sizeof thetas[0]; t++) {
             struct albedo r = directional_albedo(&metal, dir(thetas[t], 0.2), n, seed++);
             check_albedo("white metal", &metal, thetas[t], r, 1);
@@ -575,7 +575,7 @@ static void test_glass_energy(void)
     uint64_t seed = 800;
     for (i = 0; i < sizeof iors / sizeof iors[0]; i++)
         for (a = 0; a < sizeof alphas / sizeof alphas[0]; a++) {
-            struct bsdf b = make(MATERIAL_GLASS, v3s(1.0f), iors[i], alphas[a]);
+            struct bsdf b = make(MC_MATERIAL_KIND(glass), v3s(1.0f), iors[i], alphas[a]);
             for (t = 0; t < sizeof thetas / sizeof thetas[0]; t++) {
                 struct albedo r = directional_albedo(&b, dir(thetas[t], 0.2), n, seed++);
                 double z = fabs(r.sampled - 1.0) / (4.0 * r.se_sampled + 3e-3);
@@ -599,8 +599,8 @@ static void test_glass_energy(void)
  * exceeds F(cosθo) most (plastic.c). */
 static double plastic_albedo(float ior, float alpha, double theta, double *se)
 {
-    struct bsdf white = make(MATERIAL_PLASTIC, v3s(1.0f), ior, alpha);
-    struct bsdf black = make(MATERIAL_PLASTIC, v3s(0.0f), ior, alpha);
+    struct bsdf white = make(MC_MATERIAL_KIND(plastic), v3s(1.0f), ior, alpha);
+    struct bsdf black = make(MC_MATERIAL_KIND(plastic), v3s(0.0f), ior, alpha);
     vec3 wo = dir(theta, 0.0);
     const int n = 1000000, nmu = 20000;
     double coat = 0.0, coat2 = 0.0, base = 0.0;
@@ -609,7 +609,7 @@ static double plastic_albedo(float ior, float alpha, double theta, double *se)
     pcg32_seed(&rng, 700, 0);
     for (i = 0; i < n; i++) {
         struct bsdf_sample s;
-        if (mc_bsdf_sample(&black, wo, pcg32_float(&rng), rand2(&rng), &s)) {
+        if (mc_bsdf_sample(&black, wo, pcg32_float(&rng), rand2(&rng), MC_RADIANCE, &s)) {
             coat += s.weight.x;
             coat2 += (double)s.weight.x * s.weight.x;
         }
@@ -617,7 +617,7 @@ static double plastic_albedo(float ior, float alpha, double theta, double *se)
     for (i = 1; i <= nmu; i++) {
         double mu = (double)i / nmu, w = i == nmu ? 1.0 : (i % 2 ? 4.0 : 2.0);
         vec3 wi = v3((float)sqrt(1.0 - mu * mu), 0.0f, (float)mu);
-        base += w * 2.0 * PI * mu * (mc_bsdf_eval(&white, wo, wi).x - mc_bsdf_eval(&black, wo, wi).x);
+        base += w * 2.0 * PI * mu * (mc_bsdf_eval(&white, wo, wi, MC_RADIANCE).x - mc_bsdf_eval(&black, wo, wi, MC_RADIANCE).x);
     }
     coat /= n;
     *se = sqrt(fmax(coat2 / n - coat * coat, 0.0) / n);
@@ -655,17 +655,17 @@ static void test_limits(void)
 {
     pcg32 rng;
     int i, bad_metal = 0, bad_glass = 0, bad_plastic = 0;
-    struct bsdf metal = make_gold(1e-4f), glass = make(MATERIAL_GLASS, v3(1.0f, 0.9f, 0.8f), 1.5f, 1e-4f);
-    struct bsdf smooth_glass = make(MATERIAL_GLASS, v3(1.0f, 0.9f, 0.8f), 1.5f, 0.0f);
-    struct bsdf plastic = make(MATERIAL_PLASTIC, v3(0.5f, 0.5f, 0.5f), 1.5f, 1e-4f);
-    struct bsdf rough_plastic = make(MATERIAL_PLASTIC, v3(0.5f, 0.5f, 0.5f), 1.5f, 1e-3f);
+    struct bsdf metal = make_gold(1e-4f), glass = make(MC_MATERIAL_KIND(glass), v3(1.0f, 0.9f, 0.8f), 1.5f, 1e-4f);
+    struct bsdf smooth_glass = make(MC_MATERIAL_KIND(glass), v3(1.0f, 0.9f, 0.8f), 1.5f, 0.0f);
+    struct bsdf plastic = make(MC_MATERIAL_KIND(plastic), v3(0.5f, 0.5f, 0.5f), 1.5f, 1e-4f);
+    struct bsdf rough_plastic = make(MC_MATERIAL_KIND(plastic), v3(0.5f, 0.5f, 0.5f), 1.5f, 1e-3f);
     struct bsdf rough_metal = make_gold(1e-3f);
     pcg32_seed(&rng, 500, 0);
     T_CHECK(mc_bsdf_is_delta(&metal) && mc_bsdf_is_delta(&glass) && !mc_bsdf_is_delta(&plastic) &&
                 !mc_bsdf_is_delta(&rough_plastic) && !mc_bsdf_is_delta(&rough_metal),
             "delta: metal/glass at alpha 1e-4 yes; plastic never; alpha 1e-3 is rough");
     {
-        struct bsdf clear = make(MATERIAL_GLASS, v3s(1.0f), 1.0f, 0.5f);
+        struct bsdf clear = make(MC_MATERIAL_KIND(glass), v3s(1.0f), 1.0f, 0.5f);
         T_CHECK(mc_bsdf_is_delta(&clear), "rough glass of ior 1 is no interface: delta");
     }
     for (i = 0; i < 20000; i++) {
@@ -675,21 +675,21 @@ static void test_limits(void)
         struct bsdf_sample s, t;
         vec3 f;
         /* Metal at α = 1e-4: the mirror direction with weight F(cosθo), exactly. */
-        if (!mc_bsdf_sample(&metal, wo, uc, u, &s))
+        if (!mc_bsdf_sample(&metal, wo, uc, u, MC_RADIANCE, &s))
             bad_metal++;
         else {
             f = mc_fresnel_conductor(fabsf(wo.z), metal.eta, metal.k);
             bad_metal += s.wi.x != -wo.x || s.wi.y != -wo.y || s.wi.z != wo.z || !s.delta || s.pdf != 1.0f ||
                          s.weight.x != f.x || s.weight.y != f.y || s.weight.z != f.z;
         }
-        bad_metal += !v3_is_zero(mc_bsdf_eval(&metal, wo, wi)) || mc_bsdf_pdf(&metal, wo, wi) != 0.0f;
+        bad_metal += !v3_is_zero(mc_bsdf_eval(&metal, wo, wi, MC_RADIANCE)) || mc_bsdf_pdf(&metal, wo, wi) != 0.0f;
         /* Glass at α = 1e-4: smooth glass, sample for sample. */
-        if (mc_bsdf_sample(&glass, wo, uc, u, &s) != mc_bsdf_sample(&smooth_glass, wo, uc, u, &t) ||
+        if (mc_bsdf_sample(&glass, wo, uc, u, MC_RADIANCE, &s) != mc_bsdf_sample(&smooth_glass, wo, uc, u, MC_RADIANCE, &t) ||
             memcmp(&s.wi, &t.wi, sizeof s.wi) || memcmp(&s.weight, &t.weight, sizeof s.weight) || s.pdf != t.pdf ||
             !s.delta)
             bad_glass++;
         /* Plastic at α = 1e-4: the smooth coat's delta lobe plus the base. */
-        if (mc_bsdf_sample(&plastic, wo, uc, u, &s) && s.delta) {
+        if (mc_bsdf_sample(&plastic, wo, uc, u, MC_RADIANCE, &s) && s.delta) {
             float fc = mc_fresnel_dielectric(fabsf(wo.z), 1.5f);
             bad_plastic += s.wi.x != -wo.x || s.wi.y != -wo.y || s.wi.z != wo.z ||
                            fabsf(s.weight.x * s.pdf - fc) > 1e-6f;
@@ -707,7 +707,7 @@ static void test_limits(void)
      * reflection is 2t = 0.02 rad off; so at least 98% within 0.02 rad. */
     {
         static const double thetas[] = {0.0, 60.0, 150.0};
-        struct bsdf g = make(MATERIAL_GLASS, v3s(1.0f), 1.5f, 1e-3f);
+        struct bsdf g = make(MC_MATERIAL_KIND(glass), v3s(1.0f), 1.5f, 1e-3f);
         size_t k;
         for (k = 0; k < sizeof thetas / sizeof thetas[0]; k++) {
             vec3 wo = dir(thetas[k], 1.1);
@@ -715,7 +715,7 @@ static void test_limits(void)
             int j, refl = 0, near = 0;
             for (j = 0; j < 200000; j++) {
                 struct bsdf_sample s;
-                if (!mc_bsdf_sample(&g, wo, pcg32_float(&rng), rand2(&rng), &s))
+                if (!mc_bsdf_sample(&g, wo, pcg32_float(&rng), rand2(&rng), MC_RADIANCE, &s))
                     continue;
                 if (s.wi.z * wo.z > 0.0f) {
                     refl++;
@@ -747,8 +747,8 @@ static void test_finite(void)
     pcg32_seed(&rng, 600, 0);
     for (mat = 0; mat < 3; mat++)
         for (a = 0; a < sizeof alphas / sizeof alphas[0]; a++) {
-            struct bsdf b = mat == 0 ? make(MATERIAL_METAL, v3s(1.0f), 1.0f, alphas[a])
-                                     : make(mat == 1 ? MATERIAL_GLASS : MATERIAL_PLASTIC, v3s(1.0f), 1.5f,
+            struct bsdf b = mat == 0 ? make(MC_MATERIAL_KIND(metal), v3s(1.0f), 1.0f, alphas[a])
+                                     : make(mat == 1 ? MC_MATERIAL_KIND(glass) : MC_MATERIAL_KIND(plastic), v3s(1.0f), 1.5f,
                                             alphas[a]);
             for (z = 0; z < sizeof zs / sizeof zs[0]; z++) {
                 float st = sqrtf(fmaxf(0.0f, 1.0f - zs[z] * zs[z]));
@@ -769,12 +769,12 @@ static void test_finite(void)
                         uc = pcg32_float(&rng);
                         u = rand2(&rng);
                     }
-                    if (mc_bsdf_sample(&b, wo, uc, u, &s)) {
+                    if (mc_bsdf_sample(&b, wo, uc, u, MC_RADIANCE, &s)) {
                         samples++;
                         bad += !finite_sample(&s);
                         wi = s.wi;
                     }
-                    f = mc_bsdf_eval(&b, wo, wi);
+                    f = mc_bsdf_eval(&b, wo, wi, MC_RADIANCE);
                     p = mc_bsdf_pdf(&b, wo, wi);
                     bad += !v3_is_finite(f) || !(f.x >= 0.0f && f.y >= 0.0f && f.z >= 0.0f) || !isfinite(p) ||
                            !(p >= 0.0f);
