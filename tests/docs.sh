@@ -1,7 +1,7 @@
 #!/bin/sh
 # docs.sh: the manuals, README and scenes checked against the code. groff lints each page and man
-# renders it; mcrt.5 names every block kind and key of the scene language (the specified ones, the material kinds of the material table and
-# those in the parser's tables); mcrt.1 and `mcrt --help` name every option (and mcrt.1 every
+# renders it; mcrt.5 names every block kind and key of the scene language (the specified ones,
+# those in the parser's tables and the kinds of the material table); mcrt.1 and `mcrt --help` name every option (and mcrt.1 every
 # option --help shows); libmcrt.3 gives every function of src/mcrt.h with the header's exact
 # prototype, every status code and struct field, and an example that compiles; versions agree;
 # every scene renders and the README lists it; the Cornell box shows its red wall on the left.
