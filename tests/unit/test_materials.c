@@ -119,9 +119,8 @@ static void test_chi2(void)
 
 /* Over random wo on the sphere, in each mode: a sample's fields are finite and unit; a non-delta
  * sample's pdf is exactly mc_bsdf_pdf's and its weight f·|cos|/pdf to 1e-5 (microfacet factors
- * cancel only up to rounding); the same (uc, u) gives the same direction, pdf
- * and lobe in both modes, and the same weight for a reflection. Every eval and pdf is finite and
- * at least 0. */
+ * cancel only up to rounding); the same (uc, u) gives the same direction, pdf and lobe in both
+ * modes, and the same weight for a reflection. Every eval and pdf is finite and at least 0. */
 static void test_consistency(void)
 {
     int i, j;
