@@ -21,7 +21,7 @@ static inline int bsdf_case_sample(void *ctx, pcg32 *rng, vec3 *w)
     const struct bsdf_case *c = (const struct bsdf_case *)ctx;
     struct bsdf_sample s;
     float uc = pcg32_float(rng);
-    if (!mc_bsdf_sample(&c->b, c->wo, uc, rand2(rng), &s) || s.delta)
+    if (!mc_bsdf_sample(&c->b, c->wo, uc, rand2(rng), MC_RADIANCE, &s) || s.delta)
         return 0;
     *w = s.wi;
     return 1;

@@ -490,7 +490,8 @@ const char *const *mcrt_names(const char *set)
         const char *const *names;
     } sets[] = {{"integrator", mc_integrator_names}, {"sampler", mc_sampler_names},
                 {"aov", mc_aov_names},               {"filter", mc_filter_names},
-                {"shape", shape_blocks},             {"light", mc_light_names}};
+                {"shape", shape_blocks},             {"light", mc_light_names},
+                {"material", mc_material_names}};
     size_t i;
     for (i = 0; set && i < sizeof sets / sizeof sets[0]; i++)
         if (strcmp(set, sets[i].set) == 0)

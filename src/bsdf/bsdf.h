@@ -16,13 +16,28 @@
  * MIS: no other strategy can produce its direction), a non-delta sample has pdf = mc_bsdf_pdf.
  *
  * Roughness: metal, glass and plastic take the GGX α of struct material (α = roughness²).
- * α below MC_BSDF_SMOOTH_ALPHA is treated as a perfectly smooth (delta) interface. */
+ * α below MC_BSDF_SMOOTH_ALPHA is treated as a perfectly smooth (delta) interface.
+ *
+ * Transport mode (Veach 1997 §5.2; pbrt-v4 TransportMode): camera paths carry radiance, light
+ * paths (photons, light tracing) importance. The BSDF that importance sees is the adjoint,
+ * f*(wo, wi) = f(wi, wo), which differs from f only across a refracting interface: radiance is
+ * compressed into the smaller solid angle on the denser side, so f_radiance(wo, wi) carries a
+ * factor (n_wo/n_wi)² that f_importance lacks (Veach eq. 5.14: f(wo, wi)/n_wo² = f(wi, wo)/n_wi²).
+ * Only eval and sample depend on the mode; pdf does not. The other asymmetry of light paths, that
+ * of shading normals (Veach §5.3, pbrt-v4 §10.1.1), belongs to the integrator: it is a property of
+ * the geometry, not of the BSDF in its local frame. */
 #ifndef MCRT_BSDF_H
 #define MCRT_BSDF_H
 
 #include "core/vec.h"
 
 struct material;
+struct mc_material_ops;
+
+enum mc_transport {
+    MC_RADIANCE,  /* camera paths: wo toward the camera, wi toward the light */
+    MC_IMPORTANCE /* light paths: wo toward the light, wi toward the camera */
+};
 
 /* The α below which a surface is perfectly smooth, pbrt-v4's threshold for an "effectively
  * smooth" TrowbridgeReitzDistribution. Such a lobe, ~2α = 0.1° wide, blurs a reflection by a
@@ -48,7 +63,8 @@ struct mc_dielectric_ms {
 };
 
 struct bsdf {
-    int kind;        /* enum material_kind */
+    const struct mc_material_ops *ops; /* the material's kind (material.h) */
+    int delta;       /* every lobe is a delta lobe (mc_bsdf_is_delta) */
     vec3 color;      /* albedo / mirror reflectance / glass tint / plastic base albedo */
     float ior;       /* glass, plastic: inside over outside */
     float alpha;     /* GGX α (metal, glass, plastic); 0: smooth (set for α < MC_BSDF_SMOOTH_ALPHA) */
@@ -76,11 +92,12 @@ void mc_bsdf_prepare(struct material *m);
 void mc_bsdf_init(struct bsdf *b, const struct material *m);
 /* Whether every lobe is a delta lobe (no light sampling is useful then): mirror, smooth glass
  * (or glass of ior 1, which is no interface at all), smooth metal. */
-int mc_bsdf_is_delta(const struct bsdf *b);
-vec3 mc_bsdf_eval(const struct bsdf *b, vec3 wo, vec3 wi);
+static inline int mc_bsdf_is_delta(const struct bsdf *b) { return b->delta; }
+vec3 mc_bsdf_eval(const struct bsdf *b, vec3 wo, vec3 wi, enum mc_transport mode);
 float mc_bsdf_pdf(const struct bsdf *b, vec3 wo, vec3 wi);
 /* uc chooses a lobe, u the direction. Returns 0 when no direction was produced. */
-int mc_bsdf_sample(const struct bsdf *b, vec3 wo, float uc, vec2 u, struct bsdf_sample *out);
+int mc_bsdf_sample(const struct bsdf *b, vec3 wo, float uc, vec2 u, enum mc_transport mode,
+                   struct bsdf_sample *out);
 
 /* Exact unpolarised Fresnel reflectance of a dielectric interface (Born and Wolf; pbrt-v4
  * eq. 9.6): cos_i is the cosine on the incident side (negative: incidence from inside), eta the
@@ -90,7 +107,7 @@ float mc_fresnel_dielectric(float cos_i, float eta);
  * to the outside) at incidence cosine cos_i in [0, 1] (pbrt-v4 FrComplex). */
 vec3 mc_fresnel_conductor(float cos_i, vec3 eta, vec3 k);
 /* The η = 1 and k of a metal whose reflectance at normal incidence is r (each channel clamped
- * to [0, 0.9999] so that k stays finite); for the scene parser's "metal RGB" form. */
+ * to [0, 0.9999] so that k stays finite); the "metal RGB" form of the scene language. */
 void mc_metal_from_reflectance(vec3 r, vec3 *eta, vec3 *k);
 
 #endif

@@ -1,11 +1,13 @@
 /* bsdf_impl.h: the per-material halves of bsdf.h and their shared optics, private to src/bsdf.
- * bsdf.c dispatches on the material kind to these; each follows the rules at the top of bsdf.h.
+ * bsdf.c dispatches through each kind's mc_material_ops to these; each follows the rules at the
+ * top of bsdf.h.
  * Microfacet code sees only α >= MC_BSDF_SMOOTH_ALPHA (mc_bsdf_init sends smaller α to the
  * delta lobes). */
 #ifndef MCRT_BSDF_IMPL_H
 #define MCRT_BSDF_IMPL_H
 
 #include "bsdf/bsdf.h"
+#include "bsdf/material.h"
 
 /* ---- interface optics (fresnel.c) ---- */
 
@@ -46,41 +48,29 @@ float mc_ggx_reflection_pdf(float alpha, vec3 wo, vec3 wi);
 static inline vec3 mc_mirror_z(vec3 w) { return v3(w.x, w.y, -w.z); }
 static inline vec3 mc_front(vec3 w) { return v3(w.x, w.y, fabsf(w.z)); }
 
-/* Lambertian (diffuse.c): f = albedo/π on wo's side of the surface, 0 across it. */
-vec3 mc_diffuse_eval(const struct bsdf *b, vec3 wo, vec3 wi);
-float mc_diffuse_pdf(vec3 wo, vec3 wi);
-int mc_diffuse_sample(const struct bsdf *b, vec3 wo, vec2 u, struct bsdf_sample *out);
-
-/* Delta lobes (specular.c): only sampling is meaningful. mc_specular_reflection is the mirror
- * direction of wo about the normal as a delta sample of the given weight and probability. */
+/* Delta lobes (specular.c): mc_specular_reflection is the mirror direction of wo about the
+ * normal as a delta sample of the given weight and probability; mc_glass_sample the smooth
+ * dielectric interface (the 1/η² of radiance on crossing in MC_RADIANCE mode only). */
 int mc_specular_reflection(vec3 wo, vec3 weight, float pdf, struct bsdf_sample *out);
-int mc_glass_sample(const struct bsdf *b, vec3 wo, float uc, struct bsdf_sample *out);
-
-/* Metal (conductor.c): GGX reflection with conductor Fresnel; α = 0 is a delta reflection. */
-vec3 mc_conductor_eval(const struct bsdf *b, vec3 wo, vec3 wi);
-float mc_conductor_pdf(const struct bsdf *b, vec3 wo, vec3 wi);
-int mc_conductor_sample(const struct bsdf *b, vec3 wo, vec2 u, struct bsdf_sample *out);
-
-/* Rough glass (dielectric.c), α > 0: GGX reflection and refraction (Walter et al. 2007), plus
- * the compensation lobe of b->ms when set. */
-vec3 mc_dielectric_eval(const struct bsdf *b, vec3 wo, vec3 wi);
-float mc_dielectric_pdf(const struct bsdf *b, vec3 wo, vec3 wi);
-int mc_dielectric_sample(const struct bsdf *b, vec3 wo, float uc, vec2 u, struct bsdf_sample *out);
+int mc_glass_sample(const struct bsdf *b, vec3 wo, float uc, enum mc_transport mode, struct bsdf_sample *out);
 
 /* Rough glass's multiple-scattering compensation lobe (dielectric_ms.c). build tabulates it for
  * α and ior; albedo is the tabulated single-scattering energy albedo Ê_side(|mu|); eval the
- * lobe's f (untinted: the caller tints crossings); pdf the density of sample's wi, with which
- * sample crosses with probability ms->t[side of wo] (uc) and draws |μi| from the table (u). */
+ * lobe's radiance-mode f (untinted: the caller tints crossings); pdf the density of sample's wi,
+ * with which sample crosses with probability ms->t[side of wo] (uc) and draws |μi| from the
+ * table (u). */
 void mc_dielectric_ms_build(struct mc_dielectric_ms *ms, float alpha, float ior);
 float mc_dielectric_ms_albedo(const struct mc_dielectric_ms *ms, int side, float mu);
 float mc_dielectric_ms_eval(const struct mc_dielectric_ms *ms, vec3 wo, vec3 wi);
 float mc_dielectric_ms_pdf(const struct mc_dielectric_ms *ms, vec3 wo, vec3 wi);
 int mc_dielectric_ms_sample(const struct mc_dielectric_ms *ms, vec3 wo, float uc, vec2 u, vec3 *wi);
 
-/* Plastic (plastic.c): a diffuse base under a dielectric coat, smooth (α = 0) or GGX. */
-void mc_plastic_init(struct bsdf *b);
-vec3 mc_plastic_eval(const struct bsdf *b, vec3 wo, vec3 wi);
-float mc_plastic_pdf(const struct bsdf *b, vec3 wo, vec3 wi);
-int mc_plastic_sample(const struct bsdf *b, vec3 wo, float uc, vec2 u, struct bsdf_sample *out);
+/* Each kind's behaviour, one per line of materials.def, in its own file: diffuse.c (Lambertian),
+ * specular.c (mirror), dielectric.c (glass: smooth, or GGX reflection and refraction after
+ * Walter et al. 2007 with the compensation lobe), conductor.c (metal: GGX with conductor
+ * Fresnel, smooth at α = 0), plastic.c (a diffuse base under a smooth or GGX dielectric coat). */
+#define MC_MATERIAL(name, value, noun, keys) extern const struct mc_material_ops mc_material_ops_##name;
+#include "bsdf/materials.def"
+#undef MC_MATERIAL
 
 #endif

@@ -54,7 +54,7 @@ static float refraction_jacobian(vec3 wo, vec3 wi, vec3 wm, float eta)
 /* ---- single scattering ---- */
 
 /* f and pdf of the single-scattering model; wo.z, wi.z != 0. */
-static vec3 single_eval(const struct bsdf *b, vec3 wo, vec3 wi)
+static vec3 single_eval(const struct bsdf *b, vec3 wo, vec3 wi, enum mc_transport mode)
 {
     vec3 wm;
     float eta = orient(b, &wo, &wi), c, f;
@@ -67,11 +67,12 @@ static vec3 single_eval(const struct bsdf *b, vec3 wo, vec3 wi)
         return v3s(0.0f);
     /* Walter 2007 eq. 21: f = |wi·wm| |wo·wm| η_wo² (1 − F) D G2 / (|cosθi| cosθo (η_wo wo·wm +
      * η_wi wi·wm)²). With η_wo = 1 this is the Jacobian above over η², i.e. the radiance-mode BTDF
-     * (the 1/η² of specular.c), here times the tint. G2 is the height-correlated form of
-     * reflection, as in pbrt-v4 (Heitz 2014's exact height-correlated form for transmission
-     * is a Beta function of the Λs; not used here). */
+     * (the 1/η² of specular.c), here times the tint; importance lacks the 1/η² (bsdf.h). G2 is
+     * the height-correlated form of reflection, as in pbrt-v4 (Heitz 2014's exact
+     * height-correlated form for transmission is a Beta function of the Λs; not used here). */
     f = refraction_transmittance(b, wo, wi, wm, eta) * mc_ggx_d(b->alpha, wm) * mc_ggx_g2(b->alpha, wo, wi) *
-        v3_dot(wo, wm) * refraction_jacobian(wo, wi, wm, eta) / (eta * eta * wo.z * -wi.z);
+        v3_dot(wo, wm) * refraction_jacobian(wo, wi, wm, eta) /
+        ((mode == MC_RADIANCE ? eta * eta : 1.0f) * wo.z * -wi.z);
     return v3_scale(b->color, f);
 }
 
@@ -116,21 +117,22 @@ static float compensation_probability(const struct bsdf *b, vec3 wo)
     return b->ms ? 1.0f - mc_dielectric_ms_albedo(b->ms, wo.z < 0.0f, wo.z) : 0.0f;
 }
 
-vec3 mc_dielectric_eval(const struct bsdf *b, vec3 wo, vec3 wi)
+static vec3 dielectric_eval(const struct bsdf *b, vec3 wo, vec3 wi, enum mc_transport mode)
 {
     vec3 f;
     if (wo.z == 0.0f || wi.z == 0.0f)
         return v3s(0.0f);
-    f = single_eval(b, wo, wi);
+    f = single_eval(b, wo, wi, mode);
     if (b->ms) {
-        /* Tinted on crossing, as the refraction is. */
-        float g = mc_dielectric_ms_eval(b->ms, wo, wi);
+        /* Tinted on crossing, as the refraction is. The lobe's radiance f is reciprocal in the
+         * sense of bsdf.h (dielectric_ms.c), so its importance f, the adjoint, is f(wi, wo). */
+        float g = mode == MC_RADIANCE ? mc_dielectric_ms_eval(b->ms, wo, wi) : mc_dielectric_ms_eval(b->ms, wi, wo);
         f = v3_add(f, wo.z * wi.z < 0.0f ? v3_scale(b->color, g) : v3s(g));
     }
     return f;
 }
 
-float mc_dielectric_pdf(const struct bsdf *b, vec3 wo, vec3 wi)
+static float dielectric_pdf(const struct bsdf *b, vec3 wo, vec3 wi)
 {
     float p = compensation_probability(b, wo), single;
     if (wo.z == 0.0f || wi.z == 0.0f)
@@ -139,7 +141,8 @@ float mc_dielectric_pdf(const struct bsdf *b, vec3 wo, vec3 wi)
     return p > 0.0f ? (1.0f - p) * single + p * mc_dielectric_ms_pdf(b->ms, wo, wi) : single;
 }
 
-int mc_dielectric_sample(const struct bsdf *b, vec3 wo, float uc, vec2 u, struct bsdf_sample *out)
+static int rough_sample(const struct bsdf *b, vec3 wo, float uc, vec2 u, enum mc_transport mode,
+                       struct bsdf_sample *out)
 {
     float p = compensation_probability(b, wo);
     int ok;
@@ -152,15 +155,53 @@ int mc_dielectric_sample(const struct bsdf *b, vec3 wo, float uc, vec2 u, struct
         ok = single_sample(b, wo, p > 0.0f ? fminf((uc - p) / (1.0f - p), 0x1.fffffep-1f) : uc, u, &out->wi);
     if (!ok)
         return 0;
-    /* The pdf of wi as mc_dielectric_pdf computes it, over both lobes: the value light
+    /* The pdf of wi as dielectric_pdf computes it, over both lobes: the value light
      * sampling's MIS weights use too; a wi that rounding left no microfacet to produce is
      * dropped. The weight is f |cosθi| / pdf of the mixture (with both lobes no closed form
      * cancels). */
-    out->pdf = mc_dielectric_pdf(b, wo, out->wi);
+    out->pdf = dielectric_pdf(b, wo, out->wi);
     if (!(out->pdf > 0.0f))
         return 0;
-    out->weight = v3_scale(mc_dielectric_eval(b, wo, out->wi), fabsf(out->wi.z) / out->pdf);
+    out->weight = v3_scale(dielectric_eval(b, wo, out->wi, mode), fabsf(out->wi.z) / out->pdf);
     out->eta = wo.z * out->wi.z < 0.0f ? (wo.z > 0.0f ? b->ior : 1.0f / b->ior) : 1.0f;
     out->delta = 0;
     return 1;
 }
+
+/* ---- the glass material ---- */
+
+/* A glass of ior 1 is no interface at all, rough or not: light passes straight through
+ * (specular.c), as in pbrt-v4. */
+static float glass_alpha(float alpha, float ior) { return ior == 1.0f ? 0.0f : alpha; }
+
+static void glass_prepare(struct material *m)
+{
+    if (m->alpha >= MC_BSDF_SMOOTH_ALPHA && glass_alpha(m->alpha, m->ior) > 0.0f) /* rough (mc_bsdf_init) */
+        mc_dielectric_ms_build(&m->ms, m->alpha, m->ior);
+}
+
+static void glass_init(struct bsdf *b, const struct material *m)
+{
+    b->alpha = glass_alpha(b->alpha, b->ior);
+    b->ms = b->alpha > 0.0f && m->ms.ready ? &m->ms : NULL;
+}
+
+static int glass_sample(const struct bsdf *b, vec3 wo, float uc, vec2 u, enum mc_transport mode,
+                        struct bsdf_sample *out)
+{
+    return b->alpha > 0.0f ? rough_sample(b, wo, uc, u, mode, out) : mc_glass_sample(b, wo, uc, mode, out);
+}
+
+/* Tinted and clear, smooth and rough; clear glass with its compensation conserves energy
+ * (the tolerance of test_glass_energy in test_microfacet.c). */
+static const struct mc_material_example examples[] = {
+    {{1.0f, 0.9f, 0.8f}, 1.5f, 0.0f, {0, 0, 0}, {0, 0, 0}, 0.0},
+    {{1.0f, 0.9f, 0.8f}, 1.5f, 0.1f, {0, 0, 0}, {0, 0, 0}, 0.0},
+    {{1.0f, 1.0f, 1.0f}, 1.5f, 0.0f, {0, 0, 0}, {0, 0, 0}, 1e-6},
+    {{1.0f, 1.0f, 1.0f}, 1.33f, 0.3f, {0, 0, 0}, {0, 0, 0}, 3e-3},
+    {{1.0f, 1.0f, 1.0f}, 2.4f, 1.0f, {0, 0, 0}, {0, 0, 0}, 3e-3},
+};
+
+const struct mc_material_ops mc_material_ops_glass = {
+    "glass", MC_DELTA_WHEN_SMOOTH, NULL, glass_prepare, glass_init, dielectric_eval, dielectric_pdf, glass_sample,
+    examples, (int)(sizeof examples / sizeof examples[0])};

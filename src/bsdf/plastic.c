@@ -6,6 +6,8 @@
  * Wilkie 2007, "Arbitrarily Layered Micro-Facet Surfaces". */
 #include "bsdf/bsdf_impl.h"
 
+#include <stdio.h>
+
 #include "sample/warp.h"
 
 /* The model, for a coat of relative ior η over a base of albedo ρ (Fresnel F(μ) from outside,
@@ -35,9 +37,10 @@ static float bounce_albedo(float rho, double fdr_in)
     return (float)(rho * (1.0 - fdr_in) / (1.0 - rho * fdr_in));
 }
 
-void mc_plastic_init(struct bsdf *b)
+static void plastic_init(struct bsdf *b, const struct material *m)
 {
     double fdr, fdr_in;
+    (void)m;
     /* The model needs a coat denser than the outside; ior < 1 acts as 1 (no coat). */
     b->ior = fmaxf(b->ior, 1.0f);
     b->color = v3_min(v3_max(b->color, v3s(0.0f)), v3s(MAX_BASE_ALBEDO));
@@ -64,9 +67,10 @@ static float coat_probability(const struct bsdf *b, float cos_o)
     return s > 0.0f ? f / s : 0.0f;
 }
 
-vec3 mc_plastic_eval(const struct bsdf *b, vec3 wo, vec3 wi)
+static vec3 plastic_eval(const struct bsdf *b, vec3 wo, vec3 wi, enum mc_transport mode)
 {
     vec3 f;
+    (void)mode; /* reflection only: the same f either way */
     if (!(wo.z * wi.z > 0.0f))
         return v3s(0.0f);
     wo = mc_front(wo);
@@ -79,7 +83,7 @@ vec3 mc_plastic_eval(const struct bsdf *b, vec3 wo, vec3 wi)
     return f;
 }
 
-float mc_plastic_pdf(const struct bsdf *b, vec3 wo, vec3 wi)
+static float plastic_pdf(const struct bsdf *b, vec3 wo, vec3 wi)
 {
     float pc, pdf;
     if (!(wo.z * wi.z > 0.0f))
@@ -91,7 +95,8 @@ float mc_plastic_pdf(const struct bsdf *b, vec3 wo, vec3 wi)
     return b->alpha > 0.0f ? pdf + pc * mc_ggx_reflection_pdf(b->alpha, wo, wi) : pdf;
 }
 
-int mc_plastic_sample(const struct bsdf *b, vec3 wo, float uc, vec2 u, struct bsdf_sample *out)
+static int plastic_sample(const struct bsdf *b, vec3 wo, float uc, vec2 u, enum mc_transport mode,
+                          struct bsdf_sample *out)
 {
     vec3 w = mc_front(wo), wi;
     float pc, pdf;
@@ -111,13 +116,37 @@ int mc_plastic_sample(const struct bsdf *b, vec3 wo, float uc, vec2 u, struct bs
     }
     /* Either way wi could have come from both non-delta lobes: the weight is the whole f over
      * the mixture density (one-sample MIS with the balance heuristic, Veach 1997 §9.2.4). */
-    pdf = mc_plastic_pdf(b, w, wi);
+    pdf = plastic_pdf(b, w, wi);
     if (!(pdf > 0.0f))
         return 0;
     out->wi = wo.z > 0.0f ? wi : mc_mirror_z(wi);
     out->pdf = pdf;
-    out->weight = v3_scale(mc_plastic_eval(b, w, wi), wi.z / pdf);
+    out->weight = v3_scale(plastic_eval(b, w, wi, mode), wi.z / pdf);
     out->delta = 0;
     out->eta = 1.0f;
     return 1;
 }
+
+static int plastic_complete(struct material *m, unsigned given, struct mc_material_problem *p)
+{
+    (void)given;
+    if (m->ior >= 1.0f)
+        return 1;
+    p->key = MC_KEY_IOR;
+    p->at_number = 1;
+    snprintf(p->what, sizeof p->what, "'ior' of a plastic's coat must be at least 1");
+    return 0;
+}
+
+/* Smooth and rough coats over a coloured base, and a white base (whose albedo stays below 1:
+ * plastic.c's cap). */
+static const struct mc_material_example examples[] = {
+    {{0.8f, 0.4f, 0.1f}, 1.5f, 0.0f, {0, 0, 0}, {0, 0, 0}, 0.0},
+    {{0.8f, 0.4f, 0.1f}, 1.5f, 0.1f, {0, 0, 0}, {0, 0, 0}, 0.0},
+    {{0.8f, 0.4f, 0.1f}, 1.5f, 1.0f, {0, 0, 0}, {0, 0, 0}, 0.0},
+    {{1.0f, 1.0f, 1.0f}, 1.5f, 0.3f, {0, 0, 0}, {0, 0, 0}, 0.0},
+};
+
+const struct mc_material_ops mc_material_ops_plastic = {
+    "glossy plastic", MC_DELTA_NEVER, plastic_complete, NULL, plastic_init, plastic_eval, plastic_pdf,
+    plastic_sample, examples, (int)(sizeof examples / sizeof examples[0])};

@@ -1,5 +1,5 @@
 /* specular.c: the delta lobes: reflection about the normal (mirror, smooth metal, plastic's
- * smooth coat) and a smooth dielectric (glass) interface.
+ * smooth coat), with the mirror material, and a smooth dielectric (glass) interface.
  * Reference: pbrt-v4 §9.3 (ConductorBxDF specular case, DielectricBxDF::Sample_f). */
 #include "bsdf/bsdf_impl.h"
 
@@ -15,7 +15,7 @@ int mc_specular_reflection(vec3 wo, vec3 weight, float pdf, struct bsdf_sample *
     return 1;
 }
 
-int mc_glass_sample(const struct bsdf *b, vec3 wo, float uc, struct bsdf_sample *out)
+int mc_glass_sample(const struct bsdf *b, vec3 wo, float uc, enum mc_transport mode, struct bsdf_sample *out)
 {
     float f, etap;
     if (wo.z == 0.0f)
@@ -34,11 +34,28 @@ int mc_glass_sample(const struct bsdf *b, vec3 wo, float uc, struct bsdf_sample 
         return 0;
     out->pdf = 1.0f - f;
     out->delta = 1;
-    /* (1 − F)/(1 − F) times the tint, and 1/etap² because camera paths carry radiance: radiance
-     * is compressed into the smaller solid angle on the denser side (Veach 1997 §5.2, non-symmetric
-     * scattering due to refraction; pbrt-v4 TransportMode::Radiance). Importance transport (light
-     * tracing, photons) would omit the factor. */
-    out->weight = v3_scale(b->color, 1.0f / (etap * etap));
+    /* (1 − F)/(1 − F) times the tint, and for radiance 1/etap²: radiance is compressed into the
+     * smaller solid angle on the denser side (Veach 1997 §5.2, non-symmetric scattering due to
+     * refraction; pbrt-v4 TransportMode::Radiance). Importance has no such factor. */
+    out->weight = mode == MC_RADIANCE ? v3_scale(b->color, 1.0f / (etap * etap)) : b->color;
     out->eta = etap;
     return 1;
 }
+
+static int mirror_sample(const struct bsdf *b, vec3 wo, float uc, vec2 u, enum mc_transport mode,
+                         struct bsdf_sample *out)
+{
+    (void)uc;
+    (void)u;
+    (void)mode;
+    return mc_specular_reflection(wo, b->color, 1.0f, out);
+}
+
+static const struct mc_material_example mirror_examples[] = {
+    {{0.9f, 0.7f, 0.3f}, 1.5f, 0.0f, {0, 0, 0}, {0, 0, 0}, 0.0},
+    {{1.0f, 1.0f, 1.0f}, 1.5f, 0.0f, {0, 0, 0}, {0, 0, 0}, 1e-6},
+};
+
+const struct mc_material_ops mc_material_ops_mirror = {
+    "mirror", MC_DELTA_ALWAYS, NULL, NULL, NULL, NULL, NULL, mirror_sample,
+    mirror_examples, (int)(sizeof mirror_examples / sizeof mirror_examples[0])};

@@ -73,7 +73,7 @@ struct pov_shape {
     void (*object)(FILE *f, const struct prim *p); /* the object up to its texture */
     /* As an emitter: the light it is mapped to; NULL: an emitting one is refused. */
     void (*light)(FILE *f, const struct scene *s, const struct prim *p);
-    int glass;  /* glass on it has a verified inside */
+    int interior; /* a material with an interior (glass) on it has a verified inside */
     int rank;   /* its place in the file's order (that of the references in ref/); 0: no entry,
                  * the shape is refused */
 };
@@ -88,25 +88,58 @@ static mcrt_status refuse(mc_diag *d, const char *what, const char *why)
     return mc_fail(d, MCRT_ERR_UNSUPPORTED, "cannot export %s to POV-Ray: %s", what, why);
 }
 
+/* ---- materials ---- */
+
+/* The declarations of material k: texture Tk, and for a form with an interior also interior Ik. */
+static void put_diffuse(FILE *f, int k, const struct material *m);
+static void put_mirror(FILE *f, int k, const struct material *m);
+static void put_glass(FILE *f, int k, const struct material *m);
+
+/* Why POV-Ray cannot reproduce this glass, or NULL. */
+static const char *glass_refusal(const struct material *m)
+{
+    if (m->alpha >= MC_BSDF_SMOOTH_ALPHA) /* below this mcrt renders the smooth surface (mcrt.5) */
+        return "rough glass (POV-Ray has no verified microfacet model)";
+    if (m->color.x != 1.0f || m->color.y != 1.0f || m->color.z != 1.0f)
+        return "tinted glass (POV-Ray's filter colour is not verified)";
+    return NULL;
+}
+
+/* The material kinds with a verified POV-Ray form (mapping note); the export refuses every other
+ * kind of the material table. interior: the form has an inside, verified on spheres only. */
+static const struct pov_form {
+    const struct mc_material_kind *kind;
+    const char *(*refusal)(const struct material *m); /* NULL: every parameter set maps */
+    void (*put)(FILE *f, int k, const struct material *m);
+    int interior;
+} pov_forms[] = {
+    {MC_MATERIAL_KIND(diffuse), NULL, put_diffuse, 0},
+    {MC_MATERIAL_KIND(mirror), NULL, put_mirror, 0},
+    {MC_MATERIAL_KIND(glass), glass_refusal, put_glass, 1},
+};
+
+static const struct pov_form *pov_form(const struct material *m)
+{
+    size_t i;
+    for (i = 0; i < sizeof pov_forms / sizeof pov_forms[0]; i++)
+        if (pov_forms[i].kind == m->kind)
+            return &pov_forms[i];
+    return NULL;
+}
+
 static mcrt_status check_material(const struct material *m, mc_diag *d)
 {
-    char what[128];
+    const struct pov_form *form = pov_form(m);
+    const char *why;
+    char what[128], unmapped[160];
     snprintf(what, sizeof what, "material '%s'", m->name[0] ? m->name : "(default)");
-    switch (m->kind) {
-    case MATERIAL_METAL:
-        return refuse(d, what, "glossy metal (POV-Ray has no verified microfacet or "
-                               "conductor-Fresnel model)");
-    case MATERIAL_PLASTIC:
-        return refuse(d, what, "glossy plastic (POV-Ray has no verified coated-diffuse model)");
-    case MATERIAL_GLASS:
-        if (m->alpha >= 0.001f) /* below this mcrt renders the smooth surface (mcrt.5) */
-            return refuse(d, what, "rough glass (POV-Ray has no verified microfacet model)");
-        if (m->color.x != 1.0f || m->color.y != 1.0f || m->color.z != 1.0f)
-            return refuse(d, what, "tinted glass (POV-Ray's filter colour is not verified)");
-        return MCRT_OK;
-    default:
-        return MCRT_OK;
+    if (!form) {
+        snprintf(unmapped, sizeof unmapped, "%s (POV-Ray has no verified model of it)", m->kind->ops->what);
+        return refuse(d, what, unmapped);
     }
+    if (form->refusal && (why = form->refusal(m)) != NULL)
+        return refuse(d, what, why);
+    return MCRT_OK;
 }
 
 static mcrt_status check_emitter(const struct scene *s, const struct prim *p, mc_diag *d)
@@ -124,7 +157,7 @@ static mcrt_status check_emitter(const struct scene *s, const struct prim *p, mc
         return refuse(d, "an inward-emitting (flipped) sphere", "it is not a sphere light");
     /* The visible emitter shows emission + diffuse reflection; POV-Ray multiplies emission by the
      * pigment, so a channel of albedo 0 under a nonzero albedo in another has no exact form. */
-    if (m->kind != MATERIAL_DIFFUSE)
+    if (m->kind != MC_MATERIAL_KIND(diffuse))
         return refuse(d, "an emitter with a non-diffuse material",
                       "the visible emitter is mapped as emission over a Lambertian pigment");
     if (!v3_is_zero(c) && (c.x == 0.0f || c.y == 0.0f || c.z == 0.0f))
@@ -164,14 +197,14 @@ static mcrt_status pov_check(const struct scene *s, mc_diag *d)
             return refuse(d, "smooth-shaded triangles", "interpolated normals are not verified");
         if (p->motion && s->motions[p->motion - 1].omega != 0.0f)
             return refuse(d, "spin", "only translations are exported as clock motion");
-        if (m->kind == MATERIAL_GLASS && !pov_shapes[p->kind].glass) {
-            char what[64];
-            snprintf(what, sizeof what, "glass on a %s", mc_shape_names[p->kind]);
-            return refuse(d, what, "only glass spheres have a verified inside");
+        if (pov_form(m)->interior && !pov_shapes[p->kind].interior) {
+            char what[96];
+            snprintf(what, sizeof what, "%s on a %s", m->kind->name, mc_shape_names[p->kind]);
+            return refuse(d, what, "only spheres have a verified inside");
         }
         if (is_emitter(p) && (st = check_emitter(s, p, d)) != MCRT_OK)
             return st;
-        specular |= m->kind == MATERIAL_MIRROR || m->kind == MATERIAL_GLASS;
+        specular |= (mc_material_lobes(m) & MC_LOBE_SPECULAR) != 0;
     }
     /* With area lights, mcrt finds light -> specular -> diffuse paths (a diffuse bounce that
      * hits an emitter through a mirror or glass), which POV-Ray lacks (no caustics); and it shows
@@ -287,26 +320,35 @@ static void put_camera(FILE *f, const struct scene *s)
     fputs("}\n", f);
 }
 
-/* The declaration of material k (checked: diffuse, mirror or smooth clear glass): texture Tk, and
- * for glass also interior Ik. */
-static void put_material(FILE *f, int k, const struct material *m)
+/* "#declare Tk = texture { pigment { ", under a comment naming the material. */
+static void put_texture_head(FILE *f, int k, const struct material *m)
 {
     fprintf(f, "// material '%s'\n#declare T%d = texture { pigment { ", m->name, k);
-    switch (m->kind) {
-    case MATERIAL_MIRROR: /* constant reflectance at every angle (mapping note, mirror rows) */
-        fputs("rgb 0 } finish { ambient 0 diffuse 0 specular 0 phong 0 reflection { ", f);
-        put_rgb(f, m->color, 1.0);
-        fputs(" } } }\n", f);
-        break;
-    case MATERIAL_GLASS: /* unpolarised Fresnel, TIR included (mapping note, dielectric rows) */
-        fprintf(f, "rgbf 1 } finish { ambient 0 diffuse 0 specular 0 phong 0 reflection { 0, 1 "
-                   "fresnel on } conserve_energy } }\n#declare I%d = interior { ior %.7g }\n",
-                k, m->ior);
-        break;
-    default:
-        put_rgb(f, m->color, 1.0);
-        fputs(" } finish { ambient 0 diffuse 1 brilliance 1 specular 0 phong 0 } }\n", f);
-    }
+}
+
+static void put_diffuse(FILE *f, int k, const struct material *m)
+{
+    put_texture_head(f, k, m);
+    put_rgb(f, m->color, 1.0);
+    fputs(" } finish { ambient 0 diffuse 1 brilliance 1 specular 0 phong 0 } }\n", f);
+}
+
+/* Constant reflectance at every angle (mapping note, mirror rows). */
+static void put_mirror(FILE *f, int k, const struct material *m)
+{
+    put_texture_head(f, k, m);
+    fputs("rgb 0 } finish { ambient 0 diffuse 0 specular 0 phong 0 reflection { ", f);
+    put_rgb(f, m->color, 1.0);
+    fputs(" } } }\n", f);
+}
+
+/* Unpolarised Fresnel, TIR included (mapping note, dielectric rows); checked smooth and clear. */
+static void put_glass(FILE *f, int k, const struct material *m)
+{
+    put_texture_head(f, k, m);
+    fprintf(f, "rgbf 1 } finish { ambient 0 diffuse 0 specular 0 phong 0 reflection { 0, 1 "
+               "fresnel on } conserve_energy } }\n#declare I%d = interior { ior %.7g }\n",
+            k, m->ior);
 }
 
 /* The visible part of an emitter: emission Le over its albedo ρ (emission is scaled by the
@@ -452,7 +494,7 @@ static void put_prim(FILE *f, const struct scene *s, const struct prim *p)
 {
     pov_shapes[p->kind].object(f, p);
     fprintf(f, "texture { T%d }", p->material);
-    if (s->materials[p->material].kind == MATERIAL_GLASS)
+    if (pov_form(&s->materials[p->material])->interior)
         fprintf(f, " interior { I%d }", p->material);
     put_motion(f, s, p);
     fputs(" }\n", f);
@@ -511,7 +553,7 @@ static int put_scene(FILE *f, const struct scene *s)
         if (is_emitter(prims[i]) || used[k])
             continue;
         used[k] = 1;
-        put_material(f, k, &s->materials[k]);
+        pov_form(&s->materials[k])->put(f, k, &s->materials[k]);
     }
     free(used);
     for (i = 0; i < s->light_count; i++)

@@ -57,7 +57,7 @@ static inline vec3 light_sample(const struct scene *s, const struct integrator_d
         || v3_is_zero(ls.L))
         return v3s(0.0f);
     wi = frame_to_local(fr, ls.wi);
-    f = v3_scale(mc_bsdf_eval(b, wo, wi), fabsf(wi.z));
+    f = v3_scale(mc_bsdf_eval(b, wo, wi, MC_RADIANCE), fabsf(wi.z));
     if (v3_is_zero(f))
         return v3s(0.0f);
     shadow.o = ray_spawn(sf->p, side_normal(sf->ng, ls.wi), sf->err);
@@ -163,7 +163,7 @@ static inline vec3 radiance(const struct scene *s, const struct integrator_desc 
         {
             float uc = mc_sampler_1d(smp);
             vec2 u = mc_sampler_2d(smp);
-            if (!mc_bsdf_sample(&b, wo, uc, u, &bs))
+            if (!mc_bsdf_sample(&b, wo, uc, u, MC_RADIANCE, &bs))
                 break;
         }
         beta = v3_mul(beta, bs.weight);

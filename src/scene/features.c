@@ -1,16 +1,11 @@
 /* features.c: the features a prepared scene uses (see features.h). */
 #include "scene/features.h"
 
-#include "bsdf/bsdf.h"
-
 /* The lobes of a material that some primitive uses. */
 static unsigned material_features(const struct material *m)
 {
-    if (m->kind == MATERIAL_DIFFUSE)
-        return 0;
-    if (m->kind == MATERIAL_MIRROR || m->alpha < MC_BSDF_SMOOTH_ALPHA)
-        return FEATURE_SPECULAR;
-    return FEATURE_GLOSSY;
+    unsigned lobes = mc_material_lobes(m);
+    return (lobes & MC_LOBE_SPECULAR ? FEATURE_SPECULAR : 0) | (lobes & MC_LOBE_GLOSSY ? FEATURE_GLOSSY : 0);
 }
 
 unsigned mc_scene_features(const struct scene *s)

@@ -11,7 +11,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bsdf/bsdf.h"
 #include "scene/lex.h"
 #include "scene/obj.h"
 
@@ -50,7 +49,10 @@ struct key {
     const char *noun;            /* V_ALBEDO: what the number is, for the message */
 };
 
-#define MAX_KEYS 11
+/* The most keys of a block: the mesh's 11, or the material's (a key per material kind and its
+ * further keys), whichever is larger. */
+#define MATERIAL_KEY_COUNT (MC_MATERIAL_COUNT + MC_KEY_COUNT)
+#define MAX_KEYS (MATERIAL_KEY_COUNT > 11 ? MATERIAL_KEY_COUNT : 11)
 
 /* The values of one block as given; the finishing function applies defaults. */
 struct value {
@@ -642,15 +644,17 @@ static void finish_integrator(struct parser *p, struct block *b)
         it->strategy = (enum strategy)b->v[INT_STRATEGY].choice;
 }
 
-/* The first five keys are the material's kind: exactly one is given. */
-enum { MAT_DIFFUSE, MAT_MIRROR, MAT_GLASS, MAT_METAL, MAT_PLASTIC, MAT_IOR, MAT_TINT, MAT_ROUGHNESS,
-       MAT_ALPHA, MAT_ETA, MAT_K };
+/* The material block's keys: first one per kind of the material table (materials.def), whose
+ * keyword is followed by what enum mc_material_value says, exactly one of them given; then the
+ * further keys, in enum mc_material_key order. */
+#define V_OF_ALBEDO V_ALBEDO
+#define V_OF_NONE V_FLAG
+#define V_OF_ALBEDO_OR_NONE V_ALBEDO_OR_NONE
+#define MAT_KEY(key) (MC_MATERIAL_COUNT + (key))
 static const struct key material_keys[] = {
-    {"diffuse", V_ALBEDO, 0, 0, NULL, NULL, "albedo"},
-    {"mirror", V_ALBEDO, 0, 0, NULL, NULL, "reflectance"},
-    {"glass", V_FLAG, 0, 0, NULL, NULL, NULL},
-    {"metal", V_ALBEDO_OR_NONE, 0, 0, NULL, NULL, "reflectance"},
-    {"plastic", V_ALBEDO, 0, 0, NULL, NULL, "albedo"},
+#define MC_MATERIAL(name, value, noun, keys) {#name, V_OF_##value, 0, 0, NULL, NULL, noun},
+#include "bsdf/materials.def"
+#undef MC_MATERIAL
     {"ior", V_REAL, 0, INFINITY, "must be positive", NULL, NULL},
     {"tint", V_ALBEDO, 0, 0, NULL, NULL, "tint"},
     {"roughness", V_UNIT, 0, 0, NULL, NULL, NULL},
@@ -658,6 +662,7 @@ static const struct key material_keys[] = {
     {"eta", V_RGB, 0, 0, NULL, NULL, NULL},
     {"k", V_RGB, 0, 0, NULL, NULL, NULL},
 };
+typedef char check_material_key_count[sizeof material_keys / sizeof material_keys[0] == MATERIAL_KEY_COUNT ? 1 : -1];
 
 /* array, with room for at least count + 1 elements of size elem (capacity *cap, doubled). */
 static void *grow(struct parser *p, void *array, size_t *cap, size_t count, size_t elem)
@@ -673,18 +678,37 @@ static void *grow(struct parser *p, void *array, size_t *cap, size_t count, size
     return q;
 }
 
-/* Refuse optional key `key` unless it belongs to the material's kind (`ok`); `kinds` names them. */
-static void only_for(struct parser *p, const struct block *b, int key, int ok, const char *kinds)
+/* The material kinds taking every key of `keys` (0: all kinds), as "a, b and c" (each in
+ * quotes when quoted) with `last` for "and". */
+static void kind_list(char *buf, size_t size, unsigned keys, int quoted, const char *last)
 {
-    if (b->v[key].set && !ok)
-        fail(p, &b->v[key].key, "'%s' is only for %s", material_keys[key].name, kinds);
+    int i, n = 0, count = 0;
+    size_t len = 0;
+    buf[0] = '\0';
+    for (i = 0; i < MC_MATERIAL_COUNT; i++)
+        count += (mc_material_kinds[i].keys & keys) == keys;
+    for (i = 0; i < MC_MATERIAL_COUNT && len < size; i++) {
+        int w;
+        if ((mc_material_kinds[i].keys & keys) != keys)
+            continue;
+        w = snprintf(buf + len, size - len, "%s%s%s%s", n == 0 ? "" : n == count - 1 ? last : ", ",
+                     quoted ? "'" : "", mc_material_kinds[i].name, quoted ? "'" : "");
+        len = w < 0 ? size : len + (size_t)w;
+        n++;
+    }
 }
 
 static void finish_material(struct parser *p, struct block *b)
 {
     const struct token *nm = &b->name;
+    const struct mc_material_kind *kind;
+    const struct value *rough = &b->v[MAT_KEY(MC_KEY_ROUGHNESS)], *alpha = &b->v[MAT_KEY(MC_KEY_ALPHA)];
+    const struct value *tint = &b->v[MAT_KEY(MC_KEY_TINT)], *ior = &b->v[MAT_KEY(MC_KEY_IOR)];
     struct material m;
-    int i, given = 0, first = -1, idx;
+    struct mc_material_problem problem;
+    char kinds[160];
+    unsigned given = 0;
+    int i, count = 0, first = -1, idx;
     if (nm->len >= sizeof m.name)
         fail(p, nm, "material name longer than %d characters", (int)sizeof m.name - 1);
     memset(&m, 0, sizeof m);
@@ -695,58 +719,46 @@ static void finish_material(struct parser *p, struct block *b)
     }
     if (idx >= 0)
         fail(p, nm, "duplicate material '%s'", m.name);
-    for (i = MAT_DIFFUSE; i <= MAT_PLASTIC; i++) {
+    for (i = 0; i < MC_MATERIAL_COUNT; i++) {
         const struct value *v = &b->v[i], *f = &b->v[first < 0 ? i : first];
         if (!v->set)
             continue;
-        if (given++)
+        if (count++)
             fail(p, after(&v->key, &f->key) ? &v->key : &f->key,
                  "material '%s' has both '%s' and '%s': give one", m.name,
                  material_keys[first].name, material_keys[i].name);
         first = i;
     }
-    if (!given)
-        fail(p, nm, "material '%s' needs one of 'diffuse', 'mirror', 'glass', 'metal' or 'plastic'",
-             m.name);
-    /* Which kinds each optional key belongs to. */
-    only_for(p, b, MAT_IOR, first == MAT_GLASS || first == MAT_PLASTIC, "glass and plastic materials");
-    only_for(p, b, MAT_TINT, first == MAT_GLASS, "glass materials");
-    only_for(p, b, MAT_ROUGHNESS, first >= MAT_GLASS, "glass, metal and plastic materials");
-    only_for(p, b, MAT_ALPHA, first >= MAT_GLASS, "glass, metal and plastic materials");
-    only_for(p, b, MAT_ETA, first == MAT_METAL && b->v[MAT_METAL].n == 0,
-             "a metal given without a reflectance");
-    only_for(p, b, MAT_K, first == MAT_METAL && b->v[MAT_METAL].n == 0,
-             "a metal given without a reflectance");
-    if (b->v[MAT_ROUGHNESS].set && b->v[MAT_ALPHA].set)
-        fail(p, &b->v[after(&b->v[MAT_ALPHA].key, &b->v[MAT_ROUGHNESS].key) ? MAT_ALPHA : MAT_ROUGHNESS].key,
-             "material '%s' has both 'roughness' and 'alpha': give one", m.name);
-    if (first == MAT_METAL && b->v[MAT_METAL].n == 0 && !(b->v[MAT_ETA].set && b->v[MAT_K].set))
-        fail(p, &b->v[MAT_METAL].key,
-             "metal '%s' needs a reflectance ('metal 0.9 0.6 0.3') or both 'eta' and 'k'", m.name);
-    switch (first) {
-    case MAT_DIFFUSE: m.kind = MATERIAL_DIFFUSE; break;
-    case MAT_MIRROR: m.kind = MATERIAL_MIRROR; break;
-    case MAT_GLASS: m.kind = MATERIAL_GLASS; break;
-    case MAT_METAL: m.kind = MATERIAL_METAL; break;
-    default: m.kind = MATERIAL_PLASTIC; break;
+    if (!count) {
+        kind_list(kinds, sizeof kinds, 0, 1, " or ");
+        fail(p, nm, "material '%s' needs one of %s", m.name, kinds);
     }
-    m.color = first == MAT_GLASS ? (b->v[MAT_TINT].set ? vec_of(&b->v[MAT_TINT]) : v3s(1.0f))
-              : first == MAT_METAL && b->v[MAT_METAL].n == 0 ? v3s(1.0f)
-                                                            : vec_of(&b->v[first]);
-    m.ior = b->v[MAT_IOR].set ? (float)b->v[MAT_IOR].x[0] : 1.5f;
-    if (first == MAT_PLASTIC && m.ior < 1.0f)
-        fail(p, &b->v[MAT_IOR].at[0], "'ior' of a plastic's coat must be at least 1");
+    kind = &mc_material_kinds[first];
+    /* Each further key only for the kinds that take it. */
+    for (i = 0; i < MC_KEY_COUNT; i++) {
+        if (!b->v[MAT_KEY(i)].set)
+            continue;
+        given |= MC_KEY_BIT(i);
+        if (!(kind->keys & MC_KEY_BIT(i))) {
+            kind_list(kinds, sizeof kinds, MC_KEY_BIT(i), 0, " and ");
+            fail(p, &b->v[MAT_KEY(i)].key, "'%s' is only for %s materials", material_keys[MAT_KEY(i)].name, kinds);
+        }
+    }
+    if (rough->set && alpha->set)
+        fail(p, after(&alpha->key, &rough->key) ? &alpha->key : &rough->key,
+             "material '%s' has both 'roughness' and 'alpha': give one", m.name);
+    m.kind = kind;
+    if (b->v[first].n > 0)
+        given |= MC_GIVEN_VALUE;
+    m.color = b->v[first].n > 0 ? vec_of(&b->v[first]) : tint->set ? vec_of(tint) : v3s(1.0f);
+    m.ior = ior->set ? (float)ior->x[0] : 1.5f;
     /* Perceptual roughness r maps to α = r² (Burley 2012; pbrt-v4 remaproughness). */
-    m.alpha = b->v[MAT_ALPHA].set      ? (float)b->v[MAT_ALPHA].x[0]
-              : b->v[MAT_ROUGHNESS].set ? (float)(b->v[MAT_ROUGHNESS].x[0] * b->v[MAT_ROUGHNESS].x[0])
-                                        : 0.0f;
-    if (first == MAT_METAL && b->v[MAT_METAL].n > 0) {
-        mc_metal_from_reflectance(m.color, &m.eta, &m.k);
-    } else if (first == MAT_METAL) {
-        m.eta = vec_of(&b->v[MAT_ETA]);
-        m.k = vec_of(&b->v[MAT_K]);
-        if (!(m.eta.x > 0.0f && m.eta.y > 0.0f && m.eta.z > 0.0f))
-            fail(p, &b->v[MAT_ETA].key, "'eta' must be positive");
+    m.alpha = alpha->set ? (float)alpha->x[0] : rough->set ? (float)(rough->x[0] * rough->x[0]) : 0.0f;
+    m.eta = vec_or(b, MAT_KEY(MC_KEY_ETA), v3s(0.0f));
+    m.k = vec_or(b, MAT_KEY(MC_KEY_K), v3s(0.0f));
+    if (kind->ops->complete && !kind->ops->complete(&m, given, &problem)) {
+        const struct value *v = problem.key < 0 ? &b->v[first] : &b->v[MAT_KEY(problem.key)];
+        fail(p, problem.at_number ? &v->at[0] : &v->key, "%s", problem.what);
     }
     p->defs = grow(p, p->defs, &p->cap_defs, p->ndefs, sizeof *p->defs);
     p->defs[p->ndefs++] = *nm;

@@ -29,7 +29,7 @@ void mc_scene_init(struct scene *s)
     s->camera.shutter[1] = 1.0f;
     s->env_light = -1;
     memset(&def, 0, sizeof def);
-    def.kind = MATERIAL_DIFFUSE;
+    def.kind = MC_MATERIAL_KIND(diffuse);
     def.color = v3s(0.8f);
     def.ior = 1.5f;
     mc_scene_add_material(s, &def); /* cannot fail to matter: a failed add leaves count 0, caught by prepare */

@@ -6,7 +6,7 @@
 
 #include <stddef.h>
 
-#include "bsdf/bsdf.h"      /* struct mc_dielectric_ms */
+#include "bsdf/material.h"  /* struct material */
 #include "camera/camera.h"  /* struct camera_desc */
 #include "core/diag.h"
 #include "geom/bvh.h"
@@ -25,7 +25,6 @@ enum integrator_kind { MC_INTEGRATORS(MC_INTEGRATOR_ENUM) INTEGRATOR_COUNT };
 extern const char *const mc_integrator_names[INTEGRATOR_COUNT + 1];
 /* How the path tracer finds light: both ways weighted by MIS, or one way only (for measuring). */
 enum strategy { STRATEGY_MIS, STRATEGY_BSDF, STRATEGY_LIGHT };
-enum material_kind { MATERIAL_DIFFUSE, MATERIAL_MIRROR, MATERIAL_GLASS, MATERIAL_METAL, MATERIAL_PLASTIC };
 
 struct film_desc {
     int width, height, spp;          /* 512, 512, 16 */
@@ -39,17 +38,6 @@ struct integrator_desc {
     int rr_depth;                    /* Russian roulette starts after this many bounces: 5 */
     int light_samples;               /* shadow rays per non-delta hit: 1 */
     enum strategy strategy;          /* mis */
-};
-
-struct material {
-    char name[64];
-    enum material_kind kind;
-    vec3 color;                      /* diffuse albedo, mirror reflectance, glass tint,
-                                        metal reflectance at normal incidence, plastic base */
-    float ior;                       /* glass, plastic: index of refraction inside / outside (1.5) */
-    float alpha;                     /* GGX α = roughness² (metal, glass, plastic); 0 = smooth */
-    vec3 eta, k;                     /* metal: complex index of refraction per channel */
-    struct mc_dielectric_ms ms;      /* rough glass: filled by mc_scene_prepare (mc_bsdf_prepare) */
 };
 
 struct scene {

@@ -114,16 +114,16 @@ static void test_full(void)
     T_CHECK(s.material_count == 6, "%zu materials", s.material_count);
     if (s.material_count == 6) {
         m = s.materials;
-        T_CHECK(m[0].kind == MATERIAL_DIFFUSE && m[0].name[0] == '\0' && near3(m[0].color, .8f, .8f, .8f),
+        T_CHECK(m[0].kind == MC_MATERIAL_KIND(diffuse) && m[0].name[0] == '\0' && near3(m[0].color, .8f, .8f, .8f),
                 "default material");
-        T_CHECK(!strcmp(m[1].name, "white") && m[1].kind == MATERIAL_DIFFUSE
+        T_CHECK(!strcmp(m[1].name, "white") && m[1].kind == MC_MATERIAL_KIND(diffuse)
                     && near3(m[1].color, .75f, .75f, .75f),
                 "white");
         T_CHECK(!strcmp(m[2].name, "red") && near3(m[2].color, .7f, .1f, .05f), "red");
-        T_CHECK(m[3].kind == MATERIAL_MIRROR && near3(m[3].color, .9f, .8f, .7f), "chrome");
-        T_CHECK(m[4].kind == MATERIAL_GLASS && m[4].ior == 1.33f && near3(m[4].color, .9f, 1, .95f),
+        T_CHECK(m[3].kind == MC_MATERIAL_KIND(mirror) && near3(m[3].color, .9f, .8f, .7f), "chrome");
+        T_CHECK(m[4].kind == MC_MATERIAL_KIND(glass) && m[4].ior == 1.33f && near3(m[4].color, .9f, 1, .95f),
                 "glass");
-        T_CHECK(m[5].kind == MATERIAL_GLASS && m[5].ior == 1.5f && near3(m[5].color, 1, 1, 1),
+        T_CHECK(m[5].kind == MC_MATERIAL_KIND(glass) && m[5].ior == 1.5f && near3(m[5].color, 1, 1, 1),
                 "glass defaults");
     }
     T_CHECK(s.prim_count == 3, "%zu prims", s.prim_count);
