@@ -8,6 +8,8 @@
 #include <unistd.h>
 
 #include "api/stats_json.h"
+#include "core/alloc.h"
+#include "core/atomic.h"
 #include "core/file.h"
 #include "export/pov.h"
 #include "integrator/integrator.h"
@@ -36,7 +38,7 @@ struct mcrt_render {
     struct film film;
     struct aov_film aov;    /* first-hit layers, when opt.aovs asks for any */
     float *rgb;
-    int cancel;
+    mc_atomic_int cancel;
     mcrt_stats stats;
     mc_diag err;
 };
@@ -59,7 +61,7 @@ const char *mcrt_status_string(mcrt_status status)
 
 mcrt_scene *mcrt_scene_new(void)
 {
-    mcrt_scene *s = calloc(1, sizeof *s);
+    mcrt_scene *s = mc_calloc(1, sizeof *s);
     if (s)
         mc_scene_init(&s->s);
     return s;
@@ -108,7 +110,7 @@ mcrt_status mcrt_scene_load_file(mcrt_scene *s, const char *path)
     st = mc_read_file(path, MAX_SCENE_BYTES, NULL, &text, &len, &s->err);
     if (st != MCRT_OK)
         return st;
-    dir = malloc(strlen(path) + 2);
+    dir = mc_malloc(strlen(path) + 2);
     if (!dir) {
         free(text);
         return mc_fail(&s->err, MCRT_ERR_NOMEM, "out of memory");
@@ -165,7 +167,7 @@ void mcrt_options_init(mcrt_options *o)
 
 mcrt_render *mcrt_render_new(const mcrt_scene *s, const mcrt_options *o)
 {
-    mcrt_render *r = calloc(1, sizeof *r);
+    mcrt_render *r = mc_calloc(1, sizeof *r);
     if (!r)
         return NULL;
     r->scene = s;
@@ -194,7 +196,7 @@ const char *mcrt_render_error(const mcrt_render *r) { return r ? r->err.msg : "n
 void mcrt_render_cancel(mcrt_render *r)
 {
     if (r)
-        __atomic_store_n(&r->cancel, 1, __ATOMIC_RELAXED);
+        mc_atomic_store(&r->cancel, 1);
 }
 
 const char *mcrt_scene_info(mcrt_scene *s)
@@ -384,12 +386,12 @@ mcrt_status mcrt_render_run(mcrt_render *r)
     h = r->opt.crop_y1 ? r->opt.crop_y1 - r->opt.crop_y0 : s->film.height;
     n = (size_t)w * (size_t)h;
     mc_aov_free(&r->aov);
-    if (mc_film_init(&r->film, w, h) != 0 || !(r->rgb = malloc(n * 3 * sizeof *r->rgb))
+    if (mc_film_init(&r->film, w, h) != 0 || !(r->rgb = mc_malloc(n * 3 * sizeof *r->rgb))
         || (first_hit_aovs(r->opt.aovs) && mc_aov_init(&r->aov, w, h) != 0))
         return mc_fail(&r->err, MCRT_ERR_NOMEM, "out of memory for a %dx%d image", w, h);
     rs.aov = r->aov.pixels ? &r->aov : NULL;
     rs.pixel_spp = NULL;
-    __atomic_store_n(&r->cancel, 0, __ATOMIC_RELAXED);
+    mc_atomic_store(&r->cancel, 0);
     rs.cancel = &r->cancel;
     ps.time_budget = r->opt.time_budget;
     ps.target_error = r->opt.target_error;
@@ -433,7 +435,7 @@ static mcrt_status save_layers(mcrt_render *r, const char *path)
 {
     struct image_layer layers[1 + NAOVS];
     size_t i, npix = (size_t)r->film.width * (size_t)r->film.height;
-    float *buf = malloc(npix * 3 * NAOVS * sizeof *buf);
+    float *buf = mc_malloc(npix * 3 * NAOVS * sizeof *buf);
     int n = 1;
     mcrt_status st;
     if (!buf)

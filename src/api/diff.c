@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/alloc.h"
 #include "diff/diff.h"
 #include "io/image.h"
 
@@ -62,7 +63,7 @@ static mcrt_status ztest(const struct image *t, const struct image *r, const mcr
                      o->variance, var.width, var.height, t->width, t->height);
         goto done;
     }
-    if (o->z_image && !(zimg = malloc(n * sizeof *zimg))) {
+    if (o->z_image && !(zimg = mc_malloc(n * sizeof *zimg))) {
         st = mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
         goto done;
     }
@@ -77,7 +78,7 @@ static mcrt_status ztest(const struct image *t, const struct image *r, const mcr
     out->max_z = z.max_z;
     out->rejected = z.rejected;
     if (zimg && !out->ztest_pass) {
-        if (!(rgb = malloc(3 * n * sizeof *rgb))) {
+        if (!(rgb = mc_malloc(3 * n * sizeof *rgb))) {
             st = mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
             goto done;
         }

@@ -9,6 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/alloc.h"
+
 /* One read or write. libpng reports errors by longjmp to the setjmp in read_pixels/write_pixels;
  * after that jump, locals changed since setjmp are indeterminate (C99 7.13.2.1), so everything
  * the cleanup needs lives in this struct, which those functions reach only through a pointer. */
@@ -92,7 +94,7 @@ static mcrt_status png_write(FILE *f, const float *rgb, int w, int h, mc_diag *d
     memset(&job, 0, sizeof job);
     job.f = f;
     job.d = d;
-    job.bytes = malloc((size_t)w * 3);
+    job.bytes = mc_malloc((size_t)w * 3);
     if (!job.bytes)
         return mc_fail(d, MCRT_ERR_NOMEM, "out of memory for a %d-pixel row", w);
     st = write_pixels(&job, rgb, w, h);
@@ -158,9 +160,9 @@ static mcrt_status read_pixels(struct png_job *job)
 
     if ((st = mc_image_alloc(&job->im, (long)w, (long)h, job->d)) != MCRT_OK)
         return st;
-    job->lut = malloc(((size_t)1 << depth) * sizeof *job->lut);
-    job->bytes = malloc(rowbytes * h);
-    job->rows = malloc(h * sizeof *job->rows);
+    job->lut = mc_malloc(((size_t)1 << depth) * sizeof *job->lut);
+    job->bytes = mc_malloc(rowbytes * h);
+    job->rows = mc_malloc(h * sizeof *job->rows);
     if (!job->lut || !job->bytes || !job->rows)
         return mc_fail(job->d, MCRT_ERR_NOMEM, "out of memory for a %lux%lu image",
                        (unsigned long)w, (unsigned long)h);

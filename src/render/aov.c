@@ -5,6 +5,8 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "core/alloc.h"
+
 int mc_aov_init(struct aov_film *a, int width, int height)
 {
     size_t n = (size_t)width * (size_t)height;
@@ -13,7 +15,7 @@ int mc_aov_init(struct aov_film *a, int width, int height)
     a->pixels = NULL;
     if (width <= 0 || height <= 0 || n / (size_t)width != (size_t)height)
         return -1;
-    a->pixels = calloc(n, sizeof *a->pixels);
+    a->pixels = mc_calloc(n, sizeof *a->pixels);
     return a->pixels ? 0 : -1;
 }
 

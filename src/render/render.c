@@ -6,6 +6,7 @@
 #include <time.h>
 
 #include "camera/camera.h"
+#include "core/alloc.h"
 #include "integrator/integrator.h"
 #include "sample/filter.h"
 #include "sample/sampler.h"
@@ -38,7 +39,7 @@ struct worker {
 
 static int cancelled(const struct job *j)
 {
-    return j->rs->cancel && __atomic_load_n(j->rs->cancel, __ATOMIC_RELAXED);
+    return j->rs->cancel && mc_atomic_load(j->rs->cancel);
 }
 
 /* The samples of pixel (x, y) of the image (the film may be a crop of it). F (the features that change camera rays) is a constant in each
@@ -120,7 +121,7 @@ static void *work(void *arg)
         j->tiles_done++;
         if (j->rs->progress && j->rs->progress(j->rs->user, (double)j->tiles_done / j->tile_count)
             && j->rs->cancel)
-            __atomic_store_n(j->rs->cancel, 1, __ATOMIC_RELAXED);
+            mc_atomic_store(j->rs->cancel, 1);
         pthread_mutex_unlock(&j->lock);
     }
     return NULL;
@@ -154,8 +155,8 @@ mcrt_status mc_render(const struct scene *s, const struct render_settings *rs, s
     j.tiles_x = (f->width + TILE - 1) / TILE;
     j.tile_count = j.tiles_x * ((f->height + TILE - 1) / TILE);
     j.next_tile = j.tiles_done = 0;
-    workers = calloc((size_t)rs->threads, sizeof *workers);
-    threads = calloc((size_t)rs->threads, sizeof *threads);
+    workers = mc_calloc((size_t)rs->threads, sizeof *workers);
+    threads = mc_calloc((size_t)rs->threads, sizeof *threads);
     if (!workers || !threads || pthread_mutex_init(&j.lock, NULL) != 0) {
         free(workers);
         free(threads);

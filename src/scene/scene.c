@@ -4,6 +4,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/alloc.h"
+
 void mc_scene_init(struct scene *s)
 {
     struct material def;
@@ -51,7 +53,7 @@ static int push(void **array, size_t *count, size_t *cap, size_t elem, const voi
         return -1;
     if (*count == *cap) {
         size_t ncap = *cap ? *cap * 2 : 16;
-        void *p = realloc(*array, ncap * elem);
+        void *p = mc_realloc(*array, ncap * elem);
         if (!p)
             return -1;
         *array = p;
