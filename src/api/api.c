@@ -7,6 +7,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "api/sized.h"
 #include "api/stats_json.h"
 #include "core/alloc.h"
 #include "core/atomic.h"
@@ -34,7 +35,11 @@ struct mcrt_scene {
 
 struct mcrt_render {
     const mcrt_scene *scene;
+    /* The caller's options, with the strings pointing at the copies below, which the render owns:
+     * nothing the caller lent is read after mcrt_render_new (but the progress callback's user). */
     mcrt_options opt;
+    char *integrator, *sampler, *aovs;
+    size_t given_size;      /* the caller's opt.size; opt.size is 0 when it was refused */
     struct film film;
     struct aov_film aov;    /* first-hit layers, when opt.aovs asks for any */
     float *rgb;
@@ -165,19 +170,32 @@ void mcrt_options_init(mcrt_options *o)
     o->size = sizeof *o;
 }
 
+/* A copy of the option string *p, which *p then points at; 0 when out of memory. */
+static int own_string(const char **p, char **copy)
+{
+    if (*p && !(*p = *copy = mc_strdup(*p)))
+        return 0;
+    return 1;
+}
+
 mcrt_render *mcrt_render_new(const mcrt_scene *s, const mcrt_options *o)
 {
     mcrt_render *r = mc_calloc(1, sizeof *r);
     if (!r)
         return NULL;
     r->scene = s;
-    if (o && o->size == sizeof *o)
-        r->opt = *o;
-    else
-        mcrt_options_init(&r->opt);
-    /* A caller built against another version of mcrt_options is refused at run time. */
-    if (o && o->size != sizeof *o)
-        r->opt.size = 0;
+    mcrt_options_init(&r->opt);
+    /* Options of another version of mcrt.h are read by their size (api/sized.h); a size that
+     * cannot be read is refused by mcrt_render_run. */
+    if (o) {
+        r->given_size = o->size;
+        r->opt.size = mc_sized_read(&r->opt, sizeof r->opt, o, o->size) ? sizeof r->opt : 0;
+    }
+    if (!own_string(&r->opt.integrator, &r->integrator) || !own_string(&r->opt.sampler, &r->sampler)
+        || !own_string(&r->opt.aovs, &r->aovs)) {
+        mcrt_render_free(r);
+        return NULL;
+    }
     return r;
 }
 
@@ -188,6 +206,9 @@ void mcrt_render_free(mcrt_render *r)
     mc_film_free(&r->film);
     mc_aov_free(&r->aov);
     free(r->rgb);
+    free(r->integrator);
+    free(r->sampler);
+    free(r->aovs);
     free(r);
 }
 
@@ -297,7 +318,10 @@ static mcrt_status settings(const mcrt_render *r, struct render_settings *rs, mc
     enum integrator_kind method = s->integrator.method;
     enum strategy strategy = s->integrator.strategy;
     if (o->size != sizeof *o)
-        return mc_fail(d, MCRT_ERR_INVALID, "mcrt_options not initialised by mcrt_options_init");
+        return mc_fail(d, MCRT_ERR_INVALID,
+                       "mcrt_options.size is %zu: not set by mcrt_options_init, or options of a "
+                       "newer mcrt.h that this library (%s, %zu bytes) does not know are set",
+                       r->given_size, MCRT_VERSION, sizeof *o);
     if (o->spp < 0 || o->spp > MAX_SPP)
         return mc_fail(d, MCRT_ERR_INVALID, "spp must be between 1 and %d, got %d", MAX_SPP, o->spp);
     if (o->threads < 0 || o->threads > MAX_THREADS)
@@ -486,13 +510,13 @@ mcrt_status mcrt_render_save_stats(mcrt_render *r, const char *path, const char 
     return mc_output_close(&out, MCRT_OK, &r->err);
 }
 
-void mcrt_render_stats(const mcrt_render *r, mcrt_stats *out)
+void mcrt_render_stats(const mcrt_render *r, mcrt_stats *out, size_t out_size)
 {
+    mcrt_stats none;
     if (!out)
         return;
-    memset(out, 0, sizeof *out);
-    if (r)
-        *out = r->stats;
+    memset(&none, 0, sizeof none);
+    mc_sized_write(out, out_size, r ? &r->stats : &none, sizeof none);
 }
 
 int mcrt_format_supported(const char *suffix) { return suffix && mc_image_supported(suffix); }
