@@ -67,8 +67,10 @@ const char *mcrt_status_string(mcrt_status status)
 mcrt_scene *mcrt_scene_new(void)
 {
     mcrt_scene *s = mc_calloc(1, sizeof *s);
-    if (s)
-        mc_scene_init(&s->s);
+    if (s && mc_scene_init(&s->s) != 0) {
+        mcrt_scene_free(s);
+        return NULL;
+    }
     return s;
 }
 
@@ -86,17 +88,21 @@ const char *mcrt_scene_error(const mcrt_scene *s) { return s ? s->err.msg : "no 
 static mcrt_status load(mcrt_scene *s, const char *text, size_t len, const char *name,
                         const char *base_dir)
 {
-    mcrt_status st;
+    mcrt_status st = MCRT_OK;
     mc_scene_free(&s->s);
-    mc_scene_init(&s->s);
     s->loaded = 0;
     s->err.msg[0] = '\0';
-    st = mc_scene_parse(&s->s, text, len, name, base_dir, &s->err);
+    if (mc_scene_init(&s->s) != 0)
+        st = mc_fail(&s->err, MCRT_ERR_NOMEM, "%s: out of memory", name);
+    if (st == MCRT_OK)
+        st = mc_scene_parse(&s->s, text, len, name, base_dir, &s->err);
     if (st == MCRT_OK)
         st = mc_scene_prepare(&s->s, &s->err);
     if (st != MCRT_OK) {
+        /* The defaults are set even when the default material cannot be: an unloaded scene
+         * needs none. */
         mc_scene_free(&s->s);
-        mc_scene_init(&s->s);
+        (void)mc_scene_init(&s->s);
         return st;
     }
     s->loaded = 1;

@@ -38,11 +38,13 @@ static void copy_stats(const struct diff_stats *s, mcrt_diff_stats *out)
 }
 
 
-/* Read the variance of TEST's means: the "variance" layer when the file has one, else the image. */
+/* Read the variance of TEST's means: the "variance" layer when the file has one, else the image.
+ * Out of memory reading the layer is not its absence. */
 static mcrt_status read_variance(const char *path, struct image *var, mc_diag *d)
 {
-    if (mc_image_read_layer(path, "variance", var, d) == MCRT_OK)
-        return MCRT_OK;
+    mcrt_status st = mc_image_read_layer(path, "variance", var, d);
+    if (st == MCRT_OK || st == MCRT_ERR_NOMEM)
+        return st;
     return mc_image_read(path, var, d);
 }
 

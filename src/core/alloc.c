@@ -35,6 +35,15 @@ void *mc_aligned_alloc(size_t align, size_t bytes)
     return p;
 }
 
+void *mc_shrink(void *p, size_t bytes)
+{
+    void *q;
+    if (!p || bytes == 0)
+        return p;
+    q = realloc(p, bytes);
+    return q ? q : p;
+}
+
 char *mc_strdup(const char *s)
 {
     char *p = mc_malloc(strlen(s) + 1);

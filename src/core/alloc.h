@@ -17,6 +17,10 @@ void *mc_realloc(void *p, size_t bytes);
 /* bytes (at least 1) aligned to align, a power of two multiple of sizeof(void *); NULL when out of
  * memory. */
 void *mc_aligned_alloc(size_t align, size_t bytes);
+/* p (from these functions) cut to its first bytes, perhaps moved; p itself, unchanged, when the
+ * system cannot or bytes is 0. Giving back a tail cannot fail from the caller's side, so it is
+ * not an allocation the tests make fail. */
+void *mc_shrink(void *p, size_t bytes);
 /* A copy of the string s (not NULL); NULL when out of memory. */
 char *mc_strdup(const char *s);
 

@@ -919,11 +919,9 @@ static int collapse(const struct bnode *bn, size_t count, const struct prim *pri
     free(plan);
     /* Give back the unused tails. A shrinking realloc keeps the block in place in practice; if it
      * moved, the arrays would still be 16-byte aligned, which is all the SIMD loads assume. */
-    b->nodes = c.node_count ? mc_realloc(c.nodes, c.node_count * sizeof *c.nodes) : NULL;
-    b->nodes = b->nodes ? b->nodes : c.nodes;
+    b->nodes = mc_shrink(c.nodes, c.node_count * sizeof *c.nodes);
     b->node_count = c.node_count;
-    b->tri4 = c.tri4_count ? mc_realloc(c.tri4, c.tri4_count * sizeof *c.tri4) : NULL;
-    b->tri4 = b->tri4 ? b->tri4 : c.tri4;
+    b->tri4 = mc_shrink(c.tri4, c.tri4_count * sizeof *c.tri4);
     b->tri4_count = c.tri4_count;
     return c.nodes && c.tri4;
 }
@@ -1034,9 +1032,7 @@ mcrt_status mc_bvh_build_threads(struct bvh *b, struct prim *prims, const struct
     order = (uint32_t *)refs;
     for (i = 0; i < n; i++)
         order[i] = refs[i].id;
-    order = mc_realloc(refs, n * sizeof *order);
-    if (!order)
-        order = (uint32_t *)refs;
+    order = mc_shrink(refs, n * sizeof *order);
     ok = permute_prims(prims, order, (uint32_t)n);
     free(order);
     if (!ok || !collapse(bin, bin_count, prims, b)) {

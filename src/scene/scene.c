@@ -6,7 +6,7 @@
 
 #include "core/alloc.h"
 
-void mc_scene_init(struct scene *s)
+int mc_scene_init(struct scene *s)
 {
     struct material def;
     memset(s, 0, sizeof *s);
@@ -29,7 +29,7 @@ void mc_scene_init(struct scene *s)
     def.kind = MATERIAL_DIFFUSE;
     def.color = v3s(0.8f);
     def.ior = 1.5f;
-    mc_scene_add_material(s, &def); /* cannot fail to matter: a failed add leaves count 0, caught by prepare */
+    return mc_scene_add_material(s, &def) < 0 ? -1 : 0;
 }
 
 void mc_scene_free(struct scene *s)
