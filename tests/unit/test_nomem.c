@@ -5,8 +5,11 @@
  * allocation fails: the call must return MCRT_ERR_NOMEM with a message on its handle and leave
  * the handle usable (a scene empty, a render without an image). Under `make check`,
  * LeakSanitizer then finds any memory a failure path forgot, and AddressSanitizer any use of
- * what it freed. An operation that succeeds although an allocation failed has made that
- * allocation optional; there is none today, and the test says so if one appears. */
+ * what it freed. OpenEXR's allocations go through the same allocator (exr.c gives it mc_malloc),
+ * so its failures are made too. An operation that succeeds although an allocation failed has
+ * made that allocation optional: mcrt has none (the test fails if one appears), OpenEXR's reader
+ * has some (exr_start_read gets over a failed allocation in its header parsing), which must then
+ * give the same result. libpng allocates with its own malloc, out of reach. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -54,8 +57,10 @@ static char scene_text[4096];
 typedef mcrt_status (*op_fn)(char *msg, size_t size);
 
 /* Run op with the n-th allocation failing, for n = 1, 2, ... until it makes fewer than n; checks
- * each outcome and reports the number of allocations op makes. */
-static void sweep(const char *name, op_fn op)
+ * each outcome and reports the number of allocations op makes. optional_ok: op reads EXR images,
+ * and may succeed (with the result of a run without failures) when OpenEXR's reader gets over a
+ * failed allocation. */
+static void sweep(const char *name, op_fn op, int optional_ok)
 {
     char msg[512];
     size_t n, count = 0, bad_status = 0, no_message = 0, optional = 0;
@@ -76,7 +81,7 @@ static void sweep(const char *name, op_fn op)
             break;
         }
         if (st == MCRT_OK) {
-            if (optional++ < 5)
+            if (optional++ < 5 && !optional_ok)
                 T_NOTE("%s: allocation %zu of %zu failed and the call still succeeded", name, n,
                        count);
         } else if (st != MCRT_ERR_NOMEM) {
@@ -93,7 +98,10 @@ static void sweep(const char *name, op_fn op)
     T_CHECK(bad_status == 0, "%s: %zu failed allocations reported as another status", name,
             bad_status);
     T_CHECK(no_message == 0, "%s: %zu failed allocations without a message", name, no_message);
-    T_CHECK(optional == 0, "%s: %zu allocations were optional", name, optional);
+    if (optional_ok)
+        T_NOTE("%s: %zu allocations were optional (OpenEXR's)", name, optional);
+    else
+        T_CHECK(optional == 0, "%s: %zu allocations were optional", name, optional);
 }
 
 /* A failed load leaves an empty scene, which renders nothing and says so. */
@@ -181,7 +189,10 @@ static mcrt_status export_pov(char *msg, size_t size)
     return st;
 }
 
-/* Compare the saved EXR with a render of another seed, with the z-test and its image. */
+/* Compare the saved EXR with a render of another seed, with the z-test and its image; a success
+ * must give the result of the first run, kept in diff_want. */
+static mcrt_diff_result diff_want;
+static int have_diff_want;
 static mcrt_status diff(char *msg, size_t size)
 {
     mcrt_diff_options o;
@@ -195,6 +206,10 @@ static mcrt_status diff(char *msg, size_t size)
     st = mcrt_diff(exr_path, ref_path, &o, &res, sizeof res, msg, size);
     if (st == MCRT_OK && !res.z_image_written)
         snprintf(msg, size, "the z image was not written"), st = MCRT_ERR_IO;
+    if (st == MCRT_OK && have_diff_want && memcmp(&res, &diff_want, sizeof res) != 0)
+        snprintf(msg, size, "a different result"), st = MCRT_ERR_INVALID;
+    if (st == MCRT_OK && !have_diff_want)
+        diff_want = res, have_diff_want = 1;
     remove(z_path);
     return st;
 }
@@ -232,7 +247,7 @@ static int write_grid(const char *path)
 
 int main(void)
 {
-    char grid[64];
+    char grid[64], msg[512];
     mcrt_render *ref;
     mcrt_options o;
     int exr = mcrt_format_supported("exr");
@@ -253,8 +268,8 @@ int main(void)
     snprintf(pov_path, sizeof pov_path, "%s/scene.pov", dir);
     snprintf(z_path, sizeof z_path, "%s/z.png", dir);
 
-    sweep("mcrt_scene_load_file scenes/mesh.mcrt", load_file);
-    sweep("mcrt_scene_load_string of every kind", load_string);
+    sweep("mcrt_scene_load_file scenes/mesh.mcrt", load_file, 0);
+    sweep("mcrt_scene_load_string of every kind", load_string, 0);
 
     scene = mcrt_scene_new();
     T_CHECK(scene && mcrt_scene_load_string(scene, scene_text, strlen(scene_text), "nomem")
@@ -266,13 +281,13 @@ int main(void)
     render_opt.threads = 2;
     render_opt.adaptive = 1;
     render_opt.aovs = "variance,albedo,normal,depth";
-    sweep("render: adaptive passes with every AOV", render);
+    sweep("render: adaptive passes with every AOV", render, 0);
     /* Progressive passes to a target error, in a crop. */
     render_opt.adaptive = 0;
     render_opt.spp = 2;
     render_opt.target_error = 1e9;
     render_opt.crop_x0 = 2, render_opt.crop_y0 = 1, render_opt.crop_x1 = 10, render_opt.crop_y1 = 7;
-    sweep("render: progressive crop", render);
+    sweep("render: progressive crop", render, 0);
 
     mcrt_options_init(&o);
     o.threads = 2;
@@ -285,24 +300,25 @@ int main(void)
                 && mcrt_render_run(rendered) == MCRT_OK && mcrt_render_run(ref) == MCRT_OK,
             "renders to save");
     if (exr) {
-        sweep("mcrt_render_save .exr with every AOV", save_exr);
+        sweep("mcrt_render_save .exr with every AOV", save_exr, 0);
         T_CHECK(mcrt_render_save(rendered, exr_path) == MCRT_OK
                     && mcrt_render_save(ref, ref_path) == MCRT_OK,
                 "save: %s", mcrt_render_error(rendered));
-        sweep("mcrt_diff with the z-test and its image", diff);
+        T_CHECK(diff(msg, sizeof msg) == MCRT_OK && have_diff_want, "diff: %s", msg);
+        sweep("mcrt_diff with the z-test and its image", diff, 1);
     }
     if (mcrt_format_supported("png"))
-        sweep("mcrt_render_save .png", save_png);
-    sweep("mcrt_render_save .pfm", save_pfm);
-    sweep("mcrt_render_save_stats", save_stats);
+        sweep("mcrt_render_save .png", save_png, 0);
+    sweep("mcrt_render_save .pfm", save_pfm, 0);
+    sweep("mcrt_render_save_stats", save_stats, 0);
     T_CHECK(mcrt_render_save(plain, pfm_path) == MCRT_OK
                 && (!mcrt_format_supported("png") || mcrt_render_save(plain, png_path) == MCRT_OK),
             "save: %s", mcrt_render_error(plain));
-    sweep("mcrt_diff of PFM and PNG images", diff_png_pfm);
+    sweep("mcrt_diff of PFM and PNG images", diff_png_pfm, 0);
     pov_scene = mcrt_scene_new();
     T_CHECK(pov_scene && mcrt_scene_load_file(pov_scene, "scenes/cornell.mcrt") == MCRT_OK,
             "load: %s", mcrt_scene_error(pov_scene));
-    sweep("mcrt_scene_export_pov scenes/cornell.mcrt", export_pov);
+    sweep("mcrt_scene_export_pov scenes/cornell.mcrt", export_pov, 0);
     mcrt_scene_free(pov_scene);
 
     mcrt_render_free(plain);
