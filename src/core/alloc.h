@@ -3,9 +3,14 @@
  * MCRT_ERR_NOMEM, leaks nothing and does not crash, in the manner of Lua's ltests.c. Memory from
  * all of them is released with free().
  *
- * The hook is internal, not a public mcrt_set_allocator: a caller's allocator would have to see
- * every free as well, and libpng and OpenEXR allocate and free on their own, so it could never be
- * the whole story; failure injection is what the tests need, and it needs no public promise. */
+ * libpng and OpenEXR are given mc_malloc and free for their own allocations (io/png.c, io/exr.c),
+ * so their failures are injected too.
+ *
+ * The hook is internal, not a public mcrt_set_allocator. Failure injection is what the tests
+ * need, and it needs no public promise; a caller's allocator would be one: every free, the
+ * image libraries' included, would have to reach it, it would have to be thread-safe (the BVH
+ * build allocates on its worker threads), and no user has asked for it. Should one, mc_malloc and
+ * its siblings are the one place to call it from. */
 #ifndef MCRT_ALLOC_H
 #define MCRT_ALLOC_H
 

@@ -23,13 +23,36 @@ struct png_job {
     png_bytep *rows;      /* read: row pointers into bytes */
     float *lut;           /* read: linear value of every possible sample */
     struct image im;      /* read: the result */
+    int nomem;            /* an allocation of libpng's failed: its error is then out of memory */
 };
+
+/* The status of an error libpng reported. */
+static mcrt_status png_status(const struct png_job *job)
+{
+    return job->nomem ? MCRT_ERR_NOMEM : MCRT_ERR_IO;
+}
 
 static void on_error(png_structp png, png_const_charp msg)
 {
     struct png_job *job = png_get_error_ptr(png);
-    mc_fail(job->d, MCRT_ERR_IO, "%s", msg);
+    mc_fail(job->d, png_status(job), "%s", msg);
     png_longjmp(png, 1);
+}
+
+/* libpng's allocations through mc_malloc, so that the tests can make them fail too. */
+static png_voidp png_alloc(png_structp png, png_alloc_size_t n)
+{
+    struct png_job *job = png_get_mem_ptr(png);
+    void *p = mc_malloc(n);
+    if (!p)
+        job->nomem = 1;
+    return p;
+}
+
+static void png_release(png_structp png, png_voidp p)
+{
+    (void)png;
+    free(p);
 }
 
 static void on_warning(png_structp png, png_const_charp msg)
@@ -66,11 +89,12 @@ static unsigned char encode8(float linear)
 static mcrt_status write_pixels(struct png_job *job, const float *rgb, int w, int h)
 {
     int x, y;
-    job->png = png_create_write_struct(PNG_LIBPNG_VER_STRING, job, on_error, on_warning);
+    job->png = png_create_write_struct_2(PNG_LIBPNG_VER_STRING, job, on_error, on_warning, job,
+                                         png_alloc, png_release);
     if (!job->png || !(job->info = png_create_info_struct(job->png)))
         return mc_fail(job->d, MCRT_ERR_NOMEM, "out of memory");
     if (setjmp(png_jmpbuf(job->png)))
-        return MCRT_ERR_IO;
+        return png_status(job);
     png_set_write_fn(job->png, job, write_data, flush_data);
     png_set_IHDR(job->png, job->info, (png_uint_32)w, (png_uint_32)h, 8, PNG_COLOR_TYPE_RGB,
                  PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
@@ -127,11 +151,12 @@ static mcrt_status read_pixels(struct png_job *job)
     size_t rowbytes, i, n;
     mcrt_status st;
 
-    job->png = png_create_read_struct(PNG_LIBPNG_VER_STRING, job, on_error, on_warning);
+    job->png = png_create_read_struct_2(PNG_LIBPNG_VER_STRING, job, on_error, on_warning, job,
+                                        png_alloc, png_release);
     if (!job->png || !(job->info = png_create_info_struct(job->png)))
         return mc_fail(job->d, MCRT_ERR_NOMEM, "out of memory");
     if (setjmp(png_jmpbuf(job->png)))
-        return MCRT_ERR_IO;
+        return png_status(job);
     png_set_read_fn(job->png, job, read_data);
     png_set_sig_bytes(job->png, 8);
     png_read_info(job->png, job->info);

@@ -5,11 +5,11 @@
  * allocation fails: the call must return MCRT_ERR_NOMEM with a message on its handle and leave
  * the handle usable (a scene empty, a render without an image). Under `make check`,
  * LeakSanitizer then finds any memory a failure path forgot, and AddressSanitizer any use of
- * what it freed. OpenEXR's allocations go through the same allocator (exr.c gives it mc_malloc),
- * so its failures are made too. An operation that succeeds although an allocation failed has
- * made that allocation optional: mcrt has none (the test fails if one appears), OpenEXR's reader
- * has some (exr_start_read gets over a failed allocation in its header parsing), which must then
- * give the same result. libpng allocates with its own malloc, out of reach. */
+ * what it freed. libpng's and OpenEXR's allocations go through the same allocator (png.c and
+ * exr.c give them mc_malloc), so their failures are made too. An operation that succeeds although
+ * an allocation failed has made that allocation optional: mcrt has none (the test fails if one
+ * appears), OpenEXR's reader has some (exr_start_read gets over failed allocations in its header
+ * parsing), which must then give the result of a run without failures. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
