@@ -15,16 +15,17 @@
  *
  * Ownership: pointers returned by mcrt_* are borrowed from the handle they came from and stay
  * valid until the next call that changes that handle (a load, a run) or until it is freed.
- * Nothing the caller passes is kept: mcrt_render_new copies the options and their strings, with
- * one exception, the progress callback's user pointer, which is handed back to the callback as
- * given. *_free(NULL) is a no-op. Handles may be used from any thread, one call at a time,
+ * Besides the scene given to mcrt_render_new, nothing the caller passes is kept: mcrt_render_new
+ * copies the options and their strings, all but the progress callback's user pointer, which is
+ * handed back to the callback as given. *_free(NULL) is a no-op. Handles may be used from any thread, one call at a time,
  * except mcrt_render_cancel, which may be called from any thread during mcrt_render_run.
  *
  * Versions: the structs the caller fills begin with a size, set by their *_init; the library
  * reads the fields that size covers and gives the later ones their defaults, so a program built
  * against an older mcrt.h keeps working. A larger size (a newer mcrt.h) is accepted when the
- * fields this library does not know are all zero (their defaults), and refused otherwise. The
- * structs the library fills are passed with their size, and only that many bytes are written.
+ * fields this library does not know are all zero (their defaults), and refused otherwise, as is a
+ * size above 4096 bytes (garbage). The structs the library fills are passed with their size, and
+ * only that many bytes are written.
  */
 #ifndef MCRT_H
 #define MCRT_H

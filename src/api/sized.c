@@ -7,7 +7,7 @@ int mc_sized_read(void *dst, size_t dst_size, const void *src, size_t src_size)
 {
     const unsigned char *tail = (const unsigned char *)src + dst_size;
     size_t i;
-    if (src_size < sizeof(size_t))
+    if (src_size < sizeof(size_t) || src_size > MC_SIZED_MAX)
         return 0;
     for (i = 0; i + dst_size < src_size; i++)
         if (tail[i] != 0)

@@ -7,8 +7,10 @@
  * by its size. A size larger than the library's struct is accepted when every byte past the
  * library's end is zero (the newer fields are at their defaults, which are all zero), and refused
  * otherwise: a field this library does not know would be silently ignored, and a render must not
- * differ from what was asked without saying so. Those are the rules of Linux's
- * copy_struct_from_user (clone3, openat2).
+ * differ from what was asked without saying so. A size above 4096 bytes is refused unread, as
+ * no version of these structs comes near it and the size of options never initialised is
+ * garbage. Those are the rules of Linux's copy_struct_from_user and clone3 (which refuses sizes
+ * above a page).
  *
  * Structs the library fills (mcrt_stats, mcrt_diff_result) come with the caller's sizeof as an
  * argument, and only that many bytes are written. */
@@ -18,8 +20,9 @@
 #include <stddef.h>
 
 /* Copy the caller's struct (src, src_size bytes) over the library's (dst, dst_size bytes, holding
- * the defaults). Returns 0, copying nothing, when src_size does not even cover the size field or
- * is larger than dst_size with a nonzero byte past it. */
+ * the defaults). Returns 0, copying nothing, when src_size does not even cover the size field, is
+ * above MC_SIZED_MAX, or is larger than dst_size with a nonzero byte past it. */
+#define MC_SIZED_MAX 4096
 int mc_sized_read(void *dst, size_t dst_size, const void *src, size_t src_size);
 /* Write the first out_size bytes (at most src_size) of the library's struct src to out. */
 void mc_sized_write(void *out, size_t out_size, const void *src, size_t src_size);

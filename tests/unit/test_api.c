@@ -138,6 +138,9 @@ static void old_and_new_options(const mcrt_scene *s)
     o.size = 0;
     T_CHECK(render(s, &o, got, err, sizeof err) == MCRT_ERR_INVALID && err[0],
             "size 0 (not initialised) is refused with a message: %s", err);
+    o.size = (size_t)-1 / 2; /* garbage: refused without reading past the struct */
+    T_CHECK(render(s, &o, got, err, sizeof err) == MCRT_ERR_INVALID && err[0],
+            "a garbage size is refused with a message: %s", err);
 }
 
 static void stats_by_size(const mcrt_scene *s)
