@@ -14,8 +14,18 @@
  *     mcrt_render_free(r); mcrt_scene_free(s);
  *
  * Ownership: pointers returned by mcrt_* are borrowed from the handle they came from and stay
- * valid until the next call that changes that handle (a load, a run) or until it is freed. *_free(NULL) is a no-op. Handles may be used from any thread, one call at a time,
+ * valid until the next call that changes that handle (a load, a run) or until it is freed.
+ * Besides the scene given to mcrt_render_new, nothing the caller passes is kept: mcrt_render_new
+ * copies the options and their strings, all but the progress callback's user pointer, which is
+ * handed back to the callback as given. *_free(NULL) is a no-op. Handles may be used from any thread, one call at a time,
  * except mcrt_render_cancel, which may be called from any thread during mcrt_render_run.
+ *
+ * Versions: the structs the caller fills begin with a size, set by their *_init; the library
+ * reads the fields that size covers and gives the later ones their defaults, so a program built
+ * against an older mcrt.h keeps working. A larger size (a newer mcrt.h) is accepted when the
+ * fields this library does not know are all zero (their defaults), and refused otherwise, as is a
+ * size above 4096 bytes (garbage). The structs the library fills are passed with their size, and
+ * only that many bytes are written.
  */
 #ifndef MCRT_H
 #define MCRT_H
@@ -28,6 +38,8 @@ extern "C" {
 #endif
 
 #define MCRT_VERSION "0.1.0"
+/* The same version as one number, major * 10000 + minor * 100 + patch, for #if. */
+#define MCRT_VERSION_NUM 100
 
 typedef enum mcrt_status {
     MCRT_OK = 0,
@@ -84,7 +96,7 @@ void mcrt_scene_free(mcrt_scene *s);
 typedef struct mcrt_render mcrt_render;
 
 typedef struct mcrt_options {
-    size_t size;            /* sizeof(mcrt_options), set by mcrt_options_init (ABI check) */
+    size_t size;            /* sizeof(mcrt_options), set by mcrt_options_init (see Versions) */
     int spp;                /* samples per pixel; 0 = the scene's */
     int threads;            /* worker threads; 0 = all cores */
     uint64_t seed;          /* the image is a function of (scene, options, seed) only */
@@ -129,8 +141,9 @@ typedef struct mcrt_options {
 /* Fill o with defaults (all zero / NULL) and set o->size. */
 void mcrt_options_init(mcrt_options *o);
 
-/* Prepare a render of s (s must outlive it); NULL when out of memory. Option errors are reported
- * by mcrt_render_run. */
+/* Prepare a render of s (s must outlive it) with a copy of the options o (NULL: the defaults);
+ * NULL when out of memory. Option errors, a size that cannot be read among them, are reported by
+ * mcrt_render_run. */
 mcrt_render *mcrt_render_new(const mcrt_scene *s, const mcrt_options *o);
 /* Render; blocks until done. MCRT_ERR_CANCELLED when cancelled (pixels then hold what was done). */
 mcrt_status mcrt_render_run(mcrt_render *r);
@@ -160,8 +173,9 @@ typedef struct mcrt_stats {
     int adaptive;        /* whether the render was adaptive (spp is then the mean per pixel) */
     int spp_min, spp_max; /* the fewest and most samples a pixel has (both spp when uniform) */
 } mcrt_stats;
-/* Facts about the last run. */
-void mcrt_render_stats(const mcrt_render *r, mcrt_stats *out);
+/* Facts about the last run (all zero before one), into the first out_size bytes of out:
+ * pass sizeof *out. */
+void mcrt_render_stats(const mcrt_render *r, mcrt_stats *out, size_t out_size);
 /* Write the last run's statistics and seed as a JSON object (the keys of mcrt(1)'s --stats), with
  * the labels scene and image (NULL: null), in the same all-or-nothing way as mcrt_render_save. */
 mcrt_status mcrt_render_save_stats(mcrt_render *r, const char *path, const char *scene,
@@ -211,13 +225,13 @@ typedef struct mcrt_diff_result {
 
 /* Fill o with defaults (all zero / NULL) and set o->size. */
 void mcrt_diff_options_init(mcrt_diff_options *o);
-/* Compare the images test and ref (PNG, EXR or PFM, the same size) into out. MCRT_ERR_IO or
- * MCRT_ERR_UNSUPPORTED when an image cannot be read (out->width is then 0), MCRT_ERR_INVALID for
- * a bad option or mismatched sizes, MCRT_ERR_IO when the z image cannot be written; a one-line
- * reason goes to error (error_size bytes; NULL to skip). A failed z-test is not an error: see
- * out->ztest_pass. */
+/* Compare the images test and ref (PNG, EXR or PFM, the same size) into the first out_size bytes
+ * of out (pass sizeof *out). MCRT_ERR_IO or MCRT_ERR_UNSUPPORTED when an image cannot be read
+ * (out->width is then 0), MCRT_ERR_INVALID for a bad option or mismatched sizes, MCRT_ERR_IO when
+ * the z image cannot be written, MCRT_ERR_NOMEM when out of memory; a one-line reason goes to
+ * error (error_size bytes; NULL to skip). A failed z-test is not an error: see out->ztest_pass. */
 mcrt_status mcrt_diff(const char *test, const char *ref, const mcrt_diff_options *o,
-                      mcrt_diff_result *out, char *error, size_t error_size);
+                      mcrt_diff_result *out, size_t out_size, char *error, size_t error_size);
 
 /* ---- Images ---- */
 

@@ -192,6 +192,13 @@ for page in man/mcrt.1 man/mcrt.5 man/libmcrt.3; do
     grep -q "^\.TH .*\"mcrt $version\"" "$page" || stale="$stale $page"
 done
 if [ -z "$stale" ]; then ok "man pages are for mcrt $version"; else fail "not for mcrt $version:$stale"; fi
+num=$(sed -n 's/^#define MCRT_VERSION_NUM \([0-9]*\)$/\1/p' src/mcrt.h)
+want=$(echo "$version" | awk -F. '{ print $1 * 10000 + $2 * 100 + $3 }')
+if [ -n "$num" ] && [ "$num" = "$want" ]; then
+    ok "MCRT_VERSION_NUM $num is MCRT_VERSION $version"
+else
+    fail "MCRT_VERSION_NUM '$num' is not MCRT_VERSION $version (want $want)"
+fi
 if [ -x "$MCRT" ]; then
     if "$MCRT" --version 2>&1 | grep -qF "$version"; then
         ok "mcrt --version shows $version"

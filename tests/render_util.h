@@ -46,7 +46,7 @@ static inline float *t_render(const char *text, const struct t_render_opts *opt,
         if (out)
             memcpy(out, px, n * sizeof *out);
         if (stats)
-            mcrt_render_stats(r, stats);
+            mcrt_render_stats(r, stats, sizeof *stats);
     }
 done:
     mcrt_render_free(r);

@@ -7,7 +7,10 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "api/sized.h"
 #include "api/stats_json.h"
+#include "core/alloc.h"
+#include "core/atomic.h"
 #include "core/file.h"
 #include "core/names.h"
 #include "export/pov.h"
@@ -32,11 +35,15 @@ struct mcrt_scene {
 
 struct mcrt_render {
     const mcrt_scene *scene;
+    /* The caller's options, with the strings pointing at the copies below, which the render owns:
+     * nothing the caller lent is read after mcrt_render_new (but the progress callback's user). */
     mcrt_options opt;
+    char *integrator, *sampler, *aovs;
+    size_t given_size;      /* the caller's opt.size; opt.size is 0 when it was refused */
     struct film film;
     struct aov_film aov;    /* first-hit layers, when opt.aovs asks for any */
     float *rgb;
-    int cancel;
+    mc_atomic_int cancel;
     mcrt_stats stats;
     mc_diag err;
 };
@@ -59,9 +66,11 @@ const char *mcrt_status_string(mcrt_status status)
 
 mcrt_scene *mcrt_scene_new(void)
 {
-    mcrt_scene *s = calloc(1, sizeof *s);
-    if (s)
-        mc_scene_init(&s->s);
+    mcrt_scene *s = mc_calloc(1, sizeof *s);
+    if (s && mc_scene_init(&s->s) != 0) {
+        mcrt_scene_free(s);
+        return NULL;
+    }
     return s;
 }
 
@@ -79,17 +88,21 @@ const char *mcrt_scene_error(const mcrt_scene *s) { return s ? s->err.msg : "no 
 static mcrt_status load(mcrt_scene *s, const char *text, size_t len, const char *name,
                         const char *base_dir)
 {
-    mcrt_status st;
+    mcrt_status st = MCRT_OK;
     mc_scene_free(&s->s);
-    mc_scene_init(&s->s);
     s->loaded = 0;
     s->err.msg[0] = '\0';
-    st = mc_scene_parse(&s->s, text, len, name, base_dir, &s->err);
+    if (mc_scene_init(&s->s) != 0)
+        st = mc_fail(&s->err, MCRT_ERR_NOMEM, "%s: out of memory", name);
+    if (st == MCRT_OK)
+        st = mc_scene_parse(&s->s, text, len, name, base_dir, &s->err);
     if (st == MCRT_OK)
         st = mc_scene_prepare(&s->s, &s->err);
     if (st != MCRT_OK) {
+        /* The defaults are set even when the default material cannot be: an unloaded scene
+         * needs none. */
         mc_scene_free(&s->s);
-        mc_scene_init(&s->s);
+        (void)mc_scene_init(&s->s);
         return st;
     }
     s->loaded = 1;
@@ -108,7 +121,7 @@ mcrt_status mcrt_scene_load_file(mcrt_scene *s, const char *path)
     st = mc_read_file(path, MAX_SCENE_BYTES, NULL, &text, &len, &s->err);
     if (st != MCRT_OK)
         return st;
-    dir = malloc(strlen(path) + 2);
+    dir = mc_malloc(strlen(path) + 2);
     if (!dir) {
         free(text);
         return mc_fail(&s->err, MCRT_ERR_NOMEM, "out of memory");
@@ -163,19 +176,32 @@ void mcrt_options_init(mcrt_options *o)
     o->size = sizeof *o;
 }
 
+/* A copy of the option string *p, which *p then points at; 0 when out of memory. */
+static int own_string(const char **p, char **copy)
+{
+    if (*p && !(*p = *copy = mc_strdup(*p)))
+        return 0;
+    return 1;
+}
+
 mcrt_render *mcrt_render_new(const mcrt_scene *s, const mcrt_options *o)
 {
-    mcrt_render *r = calloc(1, sizeof *r);
+    mcrt_render *r = mc_calloc(1, sizeof *r);
     if (!r)
         return NULL;
     r->scene = s;
-    if (o && o->size == sizeof *o)
-        r->opt = *o;
-    else
-        mcrt_options_init(&r->opt);
-    /* A caller built against another version of mcrt_options is refused at run time. */
-    if (o && o->size != sizeof *o)
-        r->opt.size = 0;
+    mcrt_options_init(&r->opt);
+    /* Options of another version of mcrt.h are read by their size (api/sized.h); a size that
+     * cannot be read is refused by mcrt_render_run. */
+    if (o) {
+        r->given_size = o->size;
+        r->opt.size = mc_sized_read(&r->opt, sizeof r->opt, o, o->size) ? sizeof r->opt : 0;
+    }
+    if (!own_string(&r->opt.integrator, &r->integrator) || !own_string(&r->opt.sampler, &r->sampler)
+        || !own_string(&r->opt.aovs, &r->aovs)) {
+        mcrt_render_free(r);
+        return NULL;
+    }
     return r;
 }
 
@@ -186,6 +212,9 @@ void mcrt_render_free(mcrt_render *r)
     mc_film_free(&r->film);
     mc_aov_free(&r->aov);
     free(r->rgb);
+    free(r->integrator);
+    free(r->sampler);
+    free(r->aovs);
     free(r);
 }
 
@@ -194,7 +223,7 @@ const char *mcrt_render_error(const mcrt_render *r) { return r ? r->err.msg : "n
 void mcrt_render_cancel(mcrt_render *r)
 {
     if (r)
-        __atomic_store_n(&r->cancel, 1, __ATOMIC_RELAXED);
+        mc_atomic_store(&r->cancel, 1);
 }
 
 const char *mcrt_scene_info(mcrt_scene *s)
@@ -288,7 +317,10 @@ static mcrt_status settings(const mcrt_render *r, struct render_settings *rs,
     const mcrt_options *o = &r->opt;
     enum integrator_kind method = s->integrator.method;
     if (o->size != sizeof *o)
-        return mc_fail(d, MCRT_ERR_INVALID, "mcrt_options not initialised by mcrt_options_init");
+        return mc_fail(d, MCRT_ERR_INVALID,
+                       "mcrt_options.size is %zu: not set by mcrt_options_init, or options of a "
+                       "newer mcrt.h that this library (%s, %zu bytes) does not know are set",
+                       r->given_size, MCRT_VERSION, sizeof *o);
     if (o->spp < 0 || o->spp > MAX_SPP)
         return mc_fail(d, MCRT_ERR_INVALID, "spp must be between 1 and %d, got %d", MAX_SPP, o->spp);
     if (o->threads < 0 || o->threads > MAX_THREADS)
@@ -363,12 +395,12 @@ mcrt_status mcrt_render_run(mcrt_render *r)
     h = r->opt.crop_y1 ? r->opt.crop_y1 - r->opt.crop_y0 : s->film.height;
     n = (size_t)w * (size_t)h;
     mc_aov_free(&r->aov);
-    if (mc_film_init(&r->film, w, h) != 0 || !(r->rgb = malloc(n * 3 * sizeof *r->rgb))
+    if (mc_film_init(&r->film, w, h) != 0 || !(r->rgb = mc_malloc(n * 3 * sizeof *r->rgb))
         || (first_hit_aovs(r->opt.aovs) && mc_aov_init(&r->aov, w, h) != 0))
         return mc_fail(&r->err, MCRT_ERR_NOMEM, "out of memory for a %dx%d image", w, h);
     rs.aov = r->aov.pixels ? &r->aov : NULL;
     rs.pixel_spp = NULL;
-    __atomic_store_n(&r->cancel, 0, __ATOMIC_RELAXED);
+    mc_atomic_store(&r->cancel, 0);
     rs.cancel = &r->cancel;
     rs.time_budget = r->opt.time_budget;
     rs.target_error = r->opt.target_error;
@@ -416,7 +448,7 @@ static mcrt_status save_layers(mcrt_render *r, const char *path)
 {
     struct image_layer layers[1 + AOV_COUNT];
     size_t npix = (size_t)r->film.width * (size_t)r->film.height;
-    float *buf = malloc(npix * 3 * AOV_COUNT * sizeof *buf);
+    float *buf = mc_malloc(npix * 3 * AOV_COUNT * sizeof *buf);
     int i, n = 1;
     mcrt_status st;
     if (!buf)
@@ -467,13 +499,13 @@ mcrt_status mcrt_render_save_stats(mcrt_render *r, const char *path, const char 
     return mc_output_close(&out, MCRT_OK, &r->err);
 }
 
-void mcrt_render_stats(const mcrt_render *r, mcrt_stats *out)
+void mcrt_render_stats(const mcrt_render *r, mcrt_stats *out, size_t out_size)
 {
+    mcrt_stats none;
     if (!out)
         return;
-    memset(out, 0, sizeof *out);
-    if (r)
-        *out = r->stats;
+    memset(&none, 0, sizeof none);
+    mc_sized_write(out, out_size, r ? &r->stats : &none, sizeof none);
 }
 
 int mcrt_format_supported(const char *suffix) { return suffix && mc_image_supported(suffix); }

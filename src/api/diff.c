@@ -6,6 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "api/sized.h"
+#include "core/alloc.h"
 #include "diff/diff.h"
 #include "io/image.h"
 
@@ -36,11 +38,13 @@ static void copy_stats(const struct diff_stats *s, mcrt_diff_stats *out)
 }
 
 
-/* Read the variance of TEST's means: the "variance" layer when the file has one, else the image. */
+/* Read the variance of TEST's means: the "variance" layer when the file has one, else the image.
+ * Out of memory reading the layer is not its absence. */
 static mcrt_status read_variance(const char *path, struct image *var, mc_diag *d)
 {
-    if (mc_image_read_layer(path, "variance", var, d) == MCRT_OK)
-        return MCRT_OK;
+    mcrt_status st = mc_image_read_layer(path, "variance", var, d);
+    if (st == MCRT_OK || st == MCRT_ERR_NOMEM)
+        return st;
     return mc_image_read(path, var, d);
 }
 
@@ -62,7 +66,7 @@ static mcrt_status ztest(const struct image *t, const struct image *r, const mcr
                      o->variance, var.width, var.height, t->width, t->height);
         goto done;
     }
-    if (o->z_image && !(zimg = malloc(n * sizeof *zimg))) {
+    if (o->z_image && !(zimg = mc_malloc(n * sizeof *zimg))) {
         st = mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
         goto done;
     }
@@ -77,7 +81,7 @@ static mcrt_status ztest(const struct image *t, const struct image *r, const mcr
     out->max_z = z.max_z;
     out->rejected = z.rejected;
     if (zimg && !out->ztest_pass) {
-        if (!(rgb = malloc(3 * n * sizeof *rgb))) {
+        if (!(rgb = mc_malloc(3 * n * sizeof *rgb))) {
             st = mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
             goto done;
         }
@@ -92,33 +96,19 @@ done:
     return st;
 }
 
-mcrt_status mcrt_diff(const char *test, const char *ref, const mcrt_diff_options *o,
-                      mcrt_diff_result *out, char *error, size_t error_size)
+/* The comparison into the library's own result struct; mcrt_diff copies it to the caller's. */
+static mcrt_status compare(const char *test, const char *ref, const mcrt_diff_options *o,
+                           mcrt_diff_result *out, mc_diag *d)
 {
     struct image t = {0, 0, NULL}, r = {0, 0, NULL};
     struct diff_rect whole, rect;
     struct diff_stats s;
-    mc_diag d;
     mcrt_status st;
-
-    d.msg[0] = '\0';
-    if (out)
-        memset(out, 0, sizeof *out);
-    if (!test || !ref || !o || !out) {
-        st = mc_fail(&d, MCRT_ERR_INVALID, "mcrt_diff: %s is NULL",
-                     !test ? "test" : !ref ? "ref" : !o ? "options" : "out");
-        goto done;
-    }
-    if (o->size != sizeof *o) {
-        st = mc_fail(&d, MCRT_ERR_INVALID,
-                     "mcrt_diff_options not initialised by mcrt_diff_options_init");
-        goto done;
-    }
-    if ((st = mc_image_read_layer(test, o->layer, &t, &d)) != MCRT_OK ||
-        (st = mc_image_read_layer(ref, o->layer, &r, &d)) != MCRT_OK)
+    if ((st = mc_image_read_layer(test, o->layer, &t, d)) != MCRT_OK ||
+        (st = mc_image_read_layer(ref, o->layer, &r, d)) != MCRT_OK)
         goto done;
     if (t.width != r.width || t.height != r.height) {
-        st = mc_fail(&d, MCRT_ERR_INVALID, "'%s' is %dx%d but '%s' is %dx%d", test, t.width,
+        st = mc_fail(d, MCRT_ERR_INVALID, "'%s' is %dx%d but '%s' is %dx%d", test, t.width,
                      t.height, ref, r.width, r.height);
         goto done;
     }
@@ -133,7 +123,7 @@ mcrt_status mcrt_diff(const char *test, const char *ref, const mcrt_diff_options
         rect.y1 = o->crop_y1;
         if (rect.x0 < 0 || rect.y0 < 0 || rect.x1 > t.width || rect.y1 > t.height ||
             rect.x0 >= rect.x1 || rect.y0 >= rect.y1) {
-            st = mc_fail(&d, MCRT_ERR_INVALID,
+            st = mc_fail(d, MCRT_ERR_INVALID,
                          "crop %d,%d,%d,%d is not a non-empty window inside the %dx%d image",
                          rect.x0, rect.y0, rect.x1, rect.y1, t.width, t.height);
             goto done;
@@ -146,10 +136,36 @@ mcrt_status mcrt_diff(const char *test, const char *ref, const mcrt_diff_options
     mc_diff_stats(&t, &r, rect, &s);
     copy_stats(&s, &out->crop);
     if (o->variance)
-        st = ztest(&t, &r, o, rect, out, &d);
+        st = ztest(&t, &r, o, rect, out, d);
 done:
     mc_image_free(&t);
     mc_image_free(&r);
+    return st;
+}
+
+mcrt_status mcrt_diff(const char *test, const char *ref, const mcrt_diff_options *o,
+                      mcrt_diff_result *out, size_t out_size, char *error, size_t error_size)
+{
+    mcrt_diff_options opt;
+    mcrt_diff_result res;
+    mc_diag d;
+    mcrt_status st;
+
+    d.msg[0] = '\0';
+    memset(&res, 0, sizeof res);
+    mcrt_diff_options_init(&opt);
+    if (!test || !ref || !o || !out)
+        st = mc_fail(&d, MCRT_ERR_INVALID, "mcrt_diff: %s is NULL",
+                     !test ? "test" : !ref ? "ref" : !o ? "options" : "out");
+    else if (!mc_sized_read(&opt, sizeof opt, o, o->size))
+        st = mc_fail(&d, MCRT_ERR_INVALID,
+                     "mcrt_diff_options.size is %zu: not set by mcrt_diff_options_init, or options "
+                     "of a newer mcrt.h that this library (%s, %zu bytes) does not know are set",
+                     o->size, MCRT_VERSION, sizeof opt);
+    else
+        st = compare(test, ref, &opt, &res, &d);
+    if (out)
+        mc_sized_write(out, out_size, &res, sizeof res);
     if (error && error_size)
         snprintf(error, error_size, "%s", st != MCRT_OK ? d.msg : "");
     return st;

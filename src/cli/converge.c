@@ -128,7 +128,7 @@ static int render_to(const mcrt_scene *s, const mcrt_options *o, const char *pat
     if (!ok)
         fprintf(stderr, "mcrt: %s\n", r ? mcrt_render_error(r) : "out of memory");
     else
-        mcrt_render_stats(r, st);
+        mcrt_render_stats(r, st, sizeof *st);
     mcrt_render_free(r);
     return ok;
 }
@@ -232,7 +232,7 @@ static int run(struct converge *c)
             rung_options(c, v, i, &o);
             if (!render_to(s, &o, tmp, &st))
                 goto done;
-            if (mcrt_diff(tmp, c->ref ? c->ref : ref, &dopt, &dr, err, sizeof err) != MCRT_OK) {
+            if (mcrt_diff(tmp, c->ref ? c->ref : ref, &dopt, &dr, sizeof dr, err, sizeof err) != MCRT_OK) {
                 fprintf(stderr, "mcrt: %s\n", err);
                 code = STATUS_USAGE;
                 goto done;

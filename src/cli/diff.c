@@ -115,7 +115,7 @@ int mc_cli_diff(int argc, char **argv)
         fprintf(stderr, "mcrt: out of memory\n");
         return STATUS_FAIL;
     }
-    if (mcrt_diff(files[0], files[1], &o, &r, error, sizeof error) != MCRT_OK) {
+    if (mcrt_diff(files[0], files[1], &o, &r, sizeof r, error, sizeof error) != MCRT_OK) {
         fprintf(stderr, "mcrt: %s\n", error);
         free(zpath);
         /* Images that cannot be read or compared are bad input; a z image that cannot be

@@ -395,7 +395,7 @@ static void sigint_catch(void)
 static int interrupted(mcrt_render *r, const char *output)
 {
     mcrt_stats st;
-    mcrt_render_stats(r, &st);
+    mcrt_render_stats(r, &st, sizeof st);
     if (st.passes == 0) {
         fprintf(stderr, "mcrt: interrupted before a pass was complete; nothing written\n");
         return 130;
@@ -478,7 +478,7 @@ static int render(const struct render_args *a, const char *output)
         fprintf(stderr, "mcrt: %s\n", mcrt_render_error(r));
         goto done;
     }
-    mcrt_render_stats(r, &st);
+    mcrt_render_stats(r, &st, sizeof st);
     if (a->stats && mcrt_render_save_stats(r, a->stats, a->scene, output) != MCRT_OK) {
         fprintf(stderr, "mcrt: %s\n", mcrt_render_error(r));
         goto done;

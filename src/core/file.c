@@ -10,6 +10,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "core/alloc.h"
+
 /* "WHERE: what 'PATH': reason" or "PATH: what: reason". */
 static mcrt_status fail(mc_diag *d, mcrt_status st, const char *where, const char *path,
                         const char *what, const char *reason)
@@ -45,7 +47,7 @@ mcrt_status mc_read_file(const char *path, size_t max_bytes, const char *where, 
             char *p;
             if (ncap > max_bytes + 2)
                 ncap = max_bytes + 2;
-            p = realloc(buf, ncap);
+            p = mc_realloc(buf, ncap);
             if (!p) {
                 free(buf);
                 fclose(fp);
@@ -95,7 +97,7 @@ mcrt_status mc_output_open(struct mc_output *o, const char *path, mc_diag *d)
         o->f = fopen(path, "wb");
         return o->f ? MCRT_OK : cannot_write(d, MCRT_ERR_IO, path, strerror(errno));
     }
-    if (!(o->tmp = malloc(len)))
+    if (!(o->tmp = mc_malloc(len)))
         return cannot_write(d, MCRT_ERR_NOMEM, path, "out of memory");
     for (attempt = 0; attempt < 100 && fd < 0; attempt++) {
         snprintf(o->tmp, len, "%s.tmp-%ld-%d", path, (long)getpid(), attempt);

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/alloc.h"
 #include "core/file.h"
 
 /* fade_distance of every light: POV-Ray's attenuation 2/(1 + (d/FD)²) is the inverse square law
@@ -526,8 +527,8 @@ static int prim_order(const void *a, const void *b)
 static int put_scene(FILE *f, const struct scene *s)
 {
     size_t i;
-    unsigned char *used = calloc(s->material_count, 1); /* materials declared so far */
-    const struct prim **prims = malloc((s->prim_count ? s->prim_count : 1) * sizeof *prims);
+    unsigned char *used = mc_calloc(s->material_count, 1); /* materials declared so far */
+    const struct prim **prims = mc_malloc((s->prim_count ? s->prim_count : 1) * sizeof *prims);
     if (!used || !prims) {
         free(used);
         free(prims);

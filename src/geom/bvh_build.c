@@ -14,6 +14,8 @@
 #include <sys/mman.h>
 #endif
 
+#include "core/alloc.h"
+#include "core/atomic.h"
 #include "geom/bvh_node.h"
 #include "geom/tri4.h"
 
@@ -311,14 +313,15 @@ static void bins_merge(struct bins *into, const struct bins *b, int nbins)
 struct par_for {
     void (*fn)(void *ctx, size_t item);
     void *ctx;
-    size_t n, next;
+    size_t n;
+    mc_atomic_size next;
 };
 
 static void *par_for_worker(void *arg)
 {
     struct par_for *p = arg;
     size_t i;
-    while ((i = __atomic_fetch_add(&p->next, 1, __ATOMIC_RELAXED)) < p->n)
+    while ((i = mc_atomic_fetch_add(&p->next, 1)) < p->n)
         p->fn(p->ctx, i);
     return NULL;
 }
@@ -387,7 +390,7 @@ static int bin_node(struct bins *b, const struct binning *bn, const struct ref *
     cb.refs = refs;
     cb.begin = t->begin;
     cb.end = t->end;
-    cb.bins = malloc(nchunks * sizeof *cb.bins);
+    cb.bins = mc_malloc(nchunks * sizeof *cb.bins);
     if (!cb.bins)
         return 0;
     parallel_for(threads, nchunks, bin_chunk, &cb);
@@ -534,13 +537,13 @@ static void set_node_box(struct bnode *n, const struct box *b)
 #define HUGE_MIN (4 * HUGE_PAGE)
 static void *alloc_large(size_t bytes)
 {
-    void *p = NULL;
+    void *p;
     size_t align = 64;
 #ifdef MADV_HUGEPAGE
     if (bytes >= HUGE_MIN)
         align = HUGE_PAGE;
 #endif
-    if (posix_memalign(&p, align, bytes ? bytes : 1) != 0)
+    if (!(p = mc_aligned_alloc(align, bytes)))
         return NULL;
 #ifdef MADV_HUGEPAGE
     if (align == HUGE_PAGE)
@@ -664,7 +667,7 @@ struct subtree {
 struct par_build {
     struct ref *refs;
     struct subtree *sub;
-    int failed;            /* out of memory in a worker */
+    mc_atomic_int failed;  /* out of memory in a worker */
 };
 
 static void build_subtree(void *ctx, size_t i)
@@ -674,7 +677,7 @@ static void build_subtree(void *ctx, size_t i)
     st->nodes = alloc_large(2 * (size_t)(st->task.end - st->task.begin) * sizeof *st->nodes);
     st->count = st->nodes ? build_nodes(st->nodes, p->refs, &st->task, 1, 0, NULL, NULL) : 0;
     if (st->count == 0)
-        __atomic_store_n(&p->failed, 1, __ATOMIC_RELAXED);
+        mc_atomic_store(&p->failed, 1);
 }
 
 /* The binary tree over refs[0, n) into nodes (room for 2n), on up to `threads` threads; returns
@@ -691,11 +694,11 @@ static size_t build_tree(struct bnode *nodes, struct ref *refs, const struct tas
     if (threads < 2 || n < PAR_MIN)
         return build_nodes(nodes, refs, root, 1, 0, NULL, NULL);
     /* Every deferred subtree has more than LEAF_MAX primitives, so there are fewer than n/LEAF_MAX. */
-    p.sub = malloc((n / LEAF_MAX + 1) * sizeof *p.sub);
+    p.sub = mc_malloc((n / LEAF_MAX + 1) * sizeof *p.sub);
     if (!p.sub)
         return 0;
     {
-        struct task *tasks = malloc((n / LEAF_MAX + 1) * sizeof *tasks);
+        struct task *tasks = mc_malloc((n / LEAF_MAX + 1) * sizeof *tasks);
         if (!tasks) {
             free(p.sub);
             return 0;
@@ -709,15 +712,15 @@ static size_t build_tree(struct bnode *nodes, struct ref *refs, const struct tas
         free(tasks);
     }
     p.refs = refs;
-    p.failed = count == 0;
-    if (!p.failed)
+    mc_atomic_store(&p.failed, count == 0);
+    if (count != 0)
         parallel_for(threads, nsub, build_subtree, &p);
     /* Append each subtree: its root goes into the slot reserved for it, its other nodes (from 2
      * on) after the top's, with their child indices moved by the same offset. */
     for (i = 0; i < nsub; i++) {
         struct subtree *st = &p.sub[i];
         size_t off = count - 2;
-        if (p.failed)
+        if (mc_atomic_load(&p.failed))
             break;
         for (k = 0; k < st->count; k++) {
             struct bnode x = st->nodes[k];
@@ -732,7 +735,7 @@ static size_t build_tree(struct bnode *nodes, struct ref *refs, const struct tas
     for (i = 0; i < nsub; i++)
         free(p.sub[i].nodes);
     free(p.sub);
-    return p.failed ? 0 : count;
+    return mc_atomic_load(&p.failed) ? 0 : count;
 }
 
 /* Build threads: the processors online, at most MAX_BUILD_THREADS. */
@@ -891,8 +894,8 @@ static uint32_t emit_node(struct collapse *c, uint32_t x)
 static int collapse(const struct bnode *bn, size_t count, const struct prim *prims, struct bvh *b)
 {
     struct collapse c;
-    struct plan *plan = malloc(count * sizeof *plan);
-    float (*cost)[BVH_WIDTH] = malloc(count * sizeof *cost);
+    struct plan *plan = mc_malloc(count * sizeof *plan);
+    float (*cost)[BVH_WIDTH] = mc_malloc(count * sizeof *cost);
     /* Bounds: each wide node but a one-leaf root makes one binary inner node a wide node; merging
      * leaves never adds blocks (ceil((a + b)/4) <= ceil(a/4) + ceil(b/4)). */
     size_t inner = (count - 2) / 2, blocks = 0, i;
@@ -916,11 +919,9 @@ static int collapse(const struct bnode *bn, size_t count, const struct prim *pri
     free(plan);
     /* Give back the unused tails. A shrinking realloc keeps the block in place in practice; if it
      * moved, the arrays would still be 16-byte aligned, which is all the SIMD loads assume. */
-    b->nodes = c.node_count ? realloc(c.nodes, c.node_count * sizeof *c.nodes) : NULL;
-    b->nodes = b->nodes ? b->nodes : c.nodes;
+    b->nodes = mc_shrink(c.nodes, c.node_count * sizeof *c.nodes);
     b->node_count = c.node_count;
-    b->tri4 = c.tri4_count ? realloc(c.tri4, c.tri4_count * sizeof *c.tri4) : NULL;
-    b->tri4 = b->tri4 ? b->tri4 : c.tri4;
+    b->tri4 = mc_shrink(c.tri4, c.tri4_count * sizeof *c.tri4);
     b->tri4_count = c.tri4_count;
     return c.nodes && c.tri4;
 }
@@ -999,7 +1000,7 @@ mcrt_status mc_bvh_build_threads(struct bvh *b, struct prim *prims, const struct
         rs.prims = prims;
         rs.bounds = bounds;
         rs.n = n;
-        rs.box = malloc(2 * nchunks * sizeof *rs.box);
+        rs.box = mc_malloc(2 * nchunks * sizeof *rs.box);
         if (!rs.box) {
             free(refs);
             free(bin);
@@ -1031,9 +1032,7 @@ mcrt_status mc_bvh_build_threads(struct bvh *b, struct prim *prims, const struct
     order = (uint32_t *)refs;
     for (i = 0; i < n; i++)
         order[i] = refs[i].id;
-    order = realloc(refs, n * sizeof *order);
-    if (!order)
-        order = (uint32_t *)refs;
+    order = mc_shrink(refs, n * sizeof *order);
     ok = permute_prims(prims, order, (uint32_t)n);
     free(order);
     if (!ok || !collapse(bin, bin_count, prims, b)) {

@@ -2,20 +2,23 @@
  * layers (LAYER.R/G/B); reads the R, G, B (or the first or a named LAYER.R/G/B) half or float
  * channels of a scanline file's first part. */
 #include "io/formats.h"
+#include "core/alloc.h"
 
 #ifdef MCRT_HAVE_EXR
 
 #include <errno.h>
 #include <openexr.h>
 #include <pthread.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
-/* One read or write: the file and the first message the library reported. */
+/* One read or write: the file and the first message the library reported, with its code. */
 struct exr_job {
     int fd;
     char msg[256];
+    exr_result_t code;
 };
 
 /* The job of the EXR call running on this thread, for the error handler. The handler cannot get
@@ -35,6 +38,7 @@ static void begin(struct exr_job *job, int fd)
 {
     job->fd = fd;
     job->msg[0] = '\0';
+    job->code = EXR_ERR_SUCCESS;
     pthread_once(&job_once, make_job_key);
     if (job_key_ok)
         pthread_setspecific(job_key, job);
@@ -52,15 +56,19 @@ static void on_error(exr_const_context_t ctxt, exr_result_t code, const char *ms
 {
     struct exr_job *job = job_key_ok ? pthread_getspecific(job_key) : NULL;
     (void)ctxt;
-    (void)code;
-    if (job && !job->msg[0])
+    if (job && !job->msg[0]) {
         snprintf(job->msg, sizeof job->msg, "%s", msg);
+        job->code = code;
+    }
 }
 
-/* The job's message, or the library's text for the code when it reported none. */
+/* The job's message, or the library's text for the code when it reported none. Out of memory
+ * is often returned as a consequence ("bad header" when the header's attributes could not be
+ * stored), so the first reported code decides too. */
 static mcrt_status fail(const struct exr_job *job, exr_result_t rv, mc_diag *d)
 {
-    return mc_fail(d, rv == EXR_ERR_OUT_OF_MEMORY ? MCRT_ERR_NOMEM : MCRT_ERR_IO, "%s",
+    int nomem = rv == EXR_ERR_OUT_OF_MEMORY || job->code == EXR_ERR_OUT_OF_MEMORY;
+    return mc_fail(d, nomem ? MCRT_ERR_NOMEM : MCRT_ERR_IO, "%s",
                    job->msg[0] ? job->msg : exr_get_default_error_message(rv));
 }
 
@@ -125,6 +133,8 @@ static exr_context_initializer_t initializer(struct exr_job *job)
     init.read_fn = read_fd;
     init.size_fn = size_fd;
     init.write_fn = write_fd;
+    init.alloc_fn = mc_malloc; /* so that the tests can make OpenEXR's allocations fail too */
+    init.free_fn = free;
     return init;
 }
 

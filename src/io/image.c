@@ -7,6 +7,7 @@
 #include <string.h>
 #include <strings.h>
 
+#include "core/alloc.h"
 #include "core/file.h"
 
 static const struct image_format *const formats[] = {&mc_png_format, &mc_exr_format,
@@ -83,7 +84,7 @@ mcrt_status mc_image_alloc(struct image *im, long w, long h, mc_diag *d)
     mcrt_status st = mc_image_check_size(w, h, d);
     if (st != MCRT_OK)
         return st;
-    im->rgb = malloc((size_t)w * (size_t)h * 3 * sizeof(float));
+    im->rgb = mc_malloc((size_t)w * (size_t)h * 3 * sizeof(float));
     if (!im->rgb)
         return mc_fail(d, MCRT_ERR_NOMEM, "out of memory for a %ldx%ld image", w, h);
     im->width = (int)w;

@@ -10,6 +10,8 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "core/alloc.h"
+
 /* Read one whitespace-delimited header token of at most size-1 characters. The single whitespace
  * character ending it is consumed, which for the last token (the scale) is exactly the separator
  * the format puts before the pixel data. Returns 0 at EOF or for an over-long token. */
@@ -83,7 +85,7 @@ static mcrt_status pfm_read(FILE *f, struct image *im, mc_diag *d)
                        (long)(sb.st_size - here), w, h);
     if ((st = mc_image_alloc(im, w, h, d)) != MCRT_OK)
         return st;
-    row = malloc(rowbytes);
+    row = mc_malloc(rowbytes);
     if (!row) {
         mc_image_free(im);
         return mc_fail(d, MCRT_ERR_NOMEM, "out of memory for a %ld-pixel row", w);
@@ -117,7 +119,7 @@ static mcrt_status pfm_read(FILE *f, struct image *im, mc_diag *d)
 static mcrt_status pfm_write(FILE *f, const float *rgb, int w, int h, mc_diag *d)
 {
     size_t rowbytes = (size_t)w * 3 * 4, i;
-    unsigned char *row = malloc(rowbytes);
+    unsigned char *row = mc_malloc(rowbytes);
     int y, ok;
     if (!row)
         return mc_fail(d, MCRT_ERR_NOMEM, "out of memory for a %d-pixel row", w);

@@ -9,6 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/alloc.h"
+
 /* One read or write. libpng reports errors by longjmp to the setjmp in read_pixels/write_pixels;
  * after that jump, locals changed since setjmp are indeterminate (C99 7.13.2.1), so everything
  * the cleanup needs lives in this struct, which those functions reach only through a pointer. */
@@ -21,13 +23,36 @@ struct png_job {
     png_bytep *rows;      /* read: row pointers into bytes */
     float *lut;           /* read: linear value of every possible sample */
     struct image im;      /* read: the result */
+    int nomem;            /* an allocation of libpng's failed: its error is then out of memory */
 };
+
+/* The status of an error libpng reported. */
+static mcrt_status png_status(const struct png_job *job)
+{
+    return job->nomem ? MCRT_ERR_NOMEM : MCRT_ERR_IO;
+}
 
 static void on_error(png_structp png, png_const_charp msg)
 {
     struct png_job *job = png_get_error_ptr(png);
-    mc_fail(job->d, MCRT_ERR_IO, "%s", msg);
+    mc_fail(job->d, png_status(job), "%s", msg);
     png_longjmp(png, 1);
+}
+
+/* libpng's allocations through mc_malloc, so that the tests can make them fail too. */
+static png_voidp png_alloc(png_structp png, png_alloc_size_t n)
+{
+    struct png_job *job = png_get_mem_ptr(png);
+    void *p = mc_malloc(n);
+    if (!p)
+        job->nomem = 1;
+    return p;
+}
+
+static void png_release(png_structp png, png_voidp p)
+{
+    (void)png;
+    free(p);
 }
 
 static void on_warning(png_structp png, png_const_charp msg)
@@ -64,11 +89,12 @@ static unsigned char encode8(float linear)
 static mcrt_status write_pixels(struct png_job *job, const float *rgb, int w, int h)
 {
     int x, y;
-    job->png = png_create_write_struct(PNG_LIBPNG_VER_STRING, job, on_error, on_warning);
+    job->png = png_create_write_struct_2(PNG_LIBPNG_VER_STRING, job, on_error, on_warning, job,
+                                         png_alloc, png_release);
     if (!job->png || !(job->info = png_create_info_struct(job->png)))
         return mc_fail(job->d, MCRT_ERR_NOMEM, "out of memory");
     if (setjmp(png_jmpbuf(job->png)))
-        return MCRT_ERR_IO;
+        return png_status(job);
     png_set_write_fn(job->png, job, write_data, flush_data);
     png_set_IHDR(job->png, job->info, (png_uint_32)w, (png_uint_32)h, 8, PNG_COLOR_TYPE_RGB,
                  PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
@@ -92,7 +118,7 @@ static mcrt_status png_write(FILE *f, const float *rgb, int w, int h, mc_diag *d
     memset(&job, 0, sizeof job);
     job.f = f;
     job.d = d;
-    job.bytes = malloc((size_t)w * 3);
+    job.bytes = mc_malloc((size_t)w * 3);
     if (!job.bytes)
         return mc_fail(d, MCRT_ERR_NOMEM, "out of memory for a %d-pixel row", w);
     st = write_pixels(&job, rgb, w, h);
@@ -125,11 +151,12 @@ static mcrt_status read_pixels(struct png_job *job)
     size_t rowbytes, i, n;
     mcrt_status st;
 
-    job->png = png_create_read_struct(PNG_LIBPNG_VER_STRING, job, on_error, on_warning);
+    job->png = png_create_read_struct_2(PNG_LIBPNG_VER_STRING, job, on_error, on_warning, job,
+                                        png_alloc, png_release);
     if (!job->png || !(job->info = png_create_info_struct(job->png)))
         return mc_fail(job->d, MCRT_ERR_NOMEM, "out of memory");
     if (setjmp(png_jmpbuf(job->png)))
-        return MCRT_ERR_IO;
+        return png_status(job);
     png_set_read_fn(job->png, job, read_data);
     png_set_sig_bytes(job->png, 8);
     png_read_info(job->png, job->info);
@@ -158,9 +185,9 @@ static mcrt_status read_pixels(struct png_job *job)
 
     if ((st = mc_image_alloc(&job->im, (long)w, (long)h, job->d)) != MCRT_OK)
         return st;
-    job->lut = malloc(((size_t)1 << depth) * sizeof *job->lut);
-    job->bytes = malloc(rowbytes * h);
-    job->rows = malloc(h * sizeof *job->rows);
+    job->lut = mc_malloc(((size_t)1 << depth) * sizeof *job->lut);
+    job->bytes = mc_malloc(rowbytes * h);
+    job->rows = mc_malloc(h * sizeof *job->rows);
     if (!job->lut || !job->bytes || !job->rows)
         return mc_fail(job->d, MCRT_ERR_NOMEM, "out of memory for a %lux%lu image",
                        (unsigned long)w, (unsigned long)h);

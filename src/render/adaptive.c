@@ -6,14 +6,16 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "core/alloc.h"
+
 /* The ε of the relative MSE, Var(mean)/(mean² + ε), as in mc_film_est_relmse. */
 #define RELMSE_EPS 0.01
 
 int mc_adaptive_init(struct adaptive *a, size_t pixels)
 {
     a->pixels = pixels;
-    a->weight = malloc(pixels * sizeof *a->weight);
-    a->counts = malloc(pixels * sizeof *a->counts);
+    a->weight = mc_malloc(pixels * sizeof *a->weight);
+    a->counts = mc_malloc(pixels * sizeof *a->counts);
     if (a->weight && a->counts)
         return 0;
     mc_adaptive_free(a);

@@ -5,6 +5,8 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "core/alloc.h"
+
 const char *const mc_aov_names[AOV_COUNT + 1] = {MC_AOVS(MC_NAMES_ENTRY)[AOV_COUNT] = NULL};
 
 int mc_aov_init(struct aov_film *a, int width, int height)
@@ -15,7 +17,7 @@ int mc_aov_init(struct aov_film *a, int width, int height)
     a->pixels = NULL;
     if (width <= 0 || height <= 0 || n / (size_t)width != (size_t)height)
         return -1;
-    a->pixels = calloc(n, sizeof *a->pixels);
+    a->pixels = mc_calloc(n, sizeof *a->pixels);
     return a->pixels ? 0 : -1;
 }
 

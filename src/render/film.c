@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/alloc.h"
+
 int mc_film_init(struct film *f, int width, int height)
 {
     size_t n = (size_t)width * (size_t)height;
@@ -13,7 +15,7 @@ int mc_film_init(struct film *f, int width, int height)
     f->pixels = NULL;
     if (width <= 0 || height <= 0 || n / (size_t)width != (size_t)height)
         return -1;
-    f->pixels = calloc(n, sizeof *f->pixels);
+    f->pixels = mc_calloc(n, sizeof *f->pixels);
     return f->pixels ? 0 : -1;
 }
 

@@ -5,6 +5,7 @@
 #ifndef MCRT_RENDER_H
 #define MCRT_RENDER_H
 
+#include "core/atomic.h"
 #include "core/diag.h"
 #include "render/aov.h"
 #include "render/film.h"
@@ -19,7 +20,7 @@ struct render_settings {
     unsigned features;                /* scene/features.h: what the render is built for */
     int (*progress)(void *user, double done); /* serialised; nonzero return cancels */
     void *user;
-    int *cancel;                      /* set nonzero (atomically) from anywhere to stop */
+    mc_atomic_int *cancel;            /* set nonzero from anywhere to stop */
     /* The film's top-left pixel in the scene's image: the film may be a window of it (a crop);
      * the camera always spans the scene's whole film. */
     int crop_x0, crop_y0;

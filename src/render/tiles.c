@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <time.h>
 
+#include "core/alloc.h"
+#include "core/atomic.h"
 #include "render/render.h"
 
 struct job {
@@ -13,11 +15,12 @@ struct job {
     void *ctx;
     int x0, y0, x1, y1;     /* the window, in image coordinates */
     int tiles_x, tile_count;
-    pthread_mutex_t lock;   /* guards next_tile */
-    int next_tile;
-    /* Progress (atomic): tiles finished; whether a thread is reporting; and, read and written
-     * only by the reporting thread, the count it last reported. */
-    int tiles_done, reporting, reported;
+    pthread_mutex_t lock;   /* guards next_tile and tiles_done */
+    int next_tile, tiles_done;
+    /* Held by the one thread that is calling the progress callback; `reported`, the count it
+     * last reported, is read and written only under it. */
+    pthread_mutex_t report_lock;
+    int reported;
 };
 
 struct worker {
@@ -27,31 +30,39 @@ struct worker {
 
 static int cancelled(const struct job *j)
 {
-    return j->rs->cancel && __atomic_load_n(j->rs->cancel, __ATOMIC_RELAXED);
+    return j->rs->cancel && mc_atomic_load(j->rs->cancel);
+}
+
+static int tiles_done(struct job *j)
+{
+    int done;
+    pthread_mutex_lock(&j->lock);
+    done = j->tiles_done;
+    pthread_mutex_unlock(&j->lock);
+    return done;
 }
 
 /* Report the latest count of finished tiles, unless another thread is reporting: that one then
- * reports it, so no worker ever waits for the callback. The reporter holds the `reporting` flag,
- * calls back while there is a count newer than the one it reported, and after letting go of the
- * flag looks once more: a tile finished between its last look and the release, whose thread saw
- * the flag still taken, is reported by one of them. Sequentially consistent order between the
- * counter and the flag makes that look see the other thread's tile (or that thread see the flag
- * free). */
+ * reports it, so no worker ever waits for the callback (it is called outside the tile lock, and
+ * a slow one delays only its own thread). The reporter calls back while there is a count newer
+ * than the one it reported, and after letting go of report_lock looks once more: a tile counted
+ * between its last look and the release, whose thread found report_lock taken, is then reported
+ * by one of the two. Counts only grow, so the fractions never decrease. */
 static void report_progress(struct job *j)
 {
     const struct render_settings *rs = j->rs;
     int done, last;
     do {
-        if (__atomic_exchange_n(&j->reporting, 1, __ATOMIC_SEQ_CST))
+        if (pthread_mutex_trylock(&j->report_lock) != 0)
             return;
-        while ((done = __atomic_load_n(&j->tiles_done, __ATOMIC_SEQ_CST)) > j->reported) {
+        while ((done = tiles_done(j)) > j->reported) {
             j->reported = done;
             if (rs->progress(rs->user, (double)done / j->tile_count) && rs->cancel)
-                __atomic_store_n(rs->cancel, 1, __ATOMIC_RELAXED);
+                mc_atomic_store(rs->cancel, 1);
         }
-        last = j->reported; /* after the release another reporter may write it */
-        __atomic_store_n(&j->reporting, 0, __ATOMIC_SEQ_CST);
-    } while (__atomic_load_n(&j->tiles_done, __ATOMIC_SEQ_CST) > last);
+        last = j->reported;
+        pthread_mutex_unlock(&j->report_lock);
+    } while (tiles_done(j) > last);
 }
 
 static void *work(void *arg)
@@ -71,7 +82,9 @@ static void *work(void *arg)
         y0 = j->y0 + (tile / j->tiles_x) * MC_TILE;
         j->fn(j->ctx, &w->counters, x0, y0, x0 + MC_TILE < j->x1 ? x0 + MC_TILE : j->x1,
               y0 + MC_TILE < j->y1 ? y0 + MC_TILE : j->y1);
-        __atomic_add_fetch(&j->tiles_done, 1, __ATOMIC_SEQ_CST);
+        pthread_mutex_lock(&j->lock);
+        j->tiles_done++;
+        pthread_mutex_unlock(&j->lock);
         if (j->rs->progress)
             report_progress(j);
     }
@@ -104,10 +117,17 @@ mcrt_status mc_tiles_run(const struct render_settings *rs, int x0, int y0, int w
     j.y1 = y0 + height;
     j.tiles_x = (width + MC_TILE - 1) / MC_TILE;
     j.tile_count = j.tiles_x * ((height + MC_TILE - 1) / MC_TILE);
-    j.next_tile = j.tiles_done = j.reporting = j.reported = 0;
-    workers = calloc((size_t)rs->threads, sizeof *workers);
-    threads = calloc((size_t)rs->threads, sizeof *threads);
+    j.next_tile = j.tiles_done = j.reported = 0;
+    workers = mc_calloc((size_t)rs->threads, sizeof *workers);
+    threads = mc_calloc((size_t)rs->threads, sizeof *threads);
     if (!workers || !threads || pthread_mutex_init(&j.lock, NULL) != 0) {
+        free(workers);
+        free(threads);
+        return mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
+    }
+    if (pthread_mutex_init(&j.report_lock, NULL) != 0) {
+        pthread_mutex_destroy(&j.lock);
+    pthread_mutex_destroy(&j.report_lock);
         free(workers);
         free(threads);
         return mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
@@ -128,6 +148,7 @@ mcrt_status mc_tiles_run(const struct render_settings *rs, int x0, int y0, int w
         out->nan_count += workers[i].counters.nans;
     }
     pthread_mutex_destroy(&j.lock);
+    pthread_mutex_destroy(&j.report_lock);
     free(workers);
     free(threads);
     out->seconds = now_seconds() - t0;

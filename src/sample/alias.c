@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/alloc.h"
+
 /* Σ ldexp(w_i, -e) by Neumaier's compensated summation (Neumaier 1974, ZAMM 54): relative
  * error ~2^-53 whatever n. With plain summation, up to n·2^-53, the columns' total mass could
  * miss n by n²·2^-53, all of it landing on the outcomes left over at the end of Vose's loop. */
@@ -44,9 +46,9 @@ mcrt_status mc_alias_build(struct mc_alias *a, const double *w, size_t n, mc_dia
     frexp(wmax, &e);
     sum = scaled_sum(w, n, e);
 
-    p = malloc(n * sizeof *p);
-    work = malloc(n * sizeof *work);
-    a->bins = malloc(n * sizeof *a->bins);
+    p = mc_malloc(n * sizeof *p);
+    work = mc_malloc(n * sizeof *work);
+    a->bins = mc_malloc(n * sizeof *a->bins);
     if (!p || !work || !a->bins) {
         free(p);
         free(work);

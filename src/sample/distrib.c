@@ -8,6 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/alloc.h"
+
 static double width(const struct mc_distrib1d *d) { return (double)d->max - (double)d->min; }
 
 /* Density and probability of a bin holding value f. When the function is all zero (sum 0)
@@ -105,8 +107,8 @@ mcrt_status mc_distrib1d_build(struct mc_distrib1d *d, const float *f, size_t n,
     st = check_values(f, n, diag);
     if (st != MCRT_OK)
         return st;
-    func = malloc(n * sizeof *func);
-    cdf = malloc((n + 1) * sizeof *cdf);
+    func = mc_malloc(n * sizeof *func);
+    cdf = mc_malloc((n + 1) * sizeof *cdf);
     if (!func || !cdf) {
         free(func);
         free(cdf);
@@ -196,10 +198,10 @@ mcrt_status mc_distrib2d_build(struct mc_distrib2d *d, const float *f, size_t nx
     st = check_values(f, n, diag);
     if (st != MCRT_OK)
         return st;
-    d->func = malloc(n * sizeof *d->func);
-    d->cdf = malloc(ny * (nx + 1) * sizeof *d->cdf);
-    d->rows = malloc(ny * sizeof *d->rows);
-    rel = malloc(ny * sizeof *rel);
+    d->func = mc_malloc(n * sizeof *d->func);
+    d->cdf = mc_malloc(ny * (nx + 1) * sizeof *d->cdf);
+    d->rows = mc_malloc(ny * sizeof *d->rows);
+    rel = mc_malloc(ny * sizeof *rel);
     if (!d->func || !d->cdf || !d->rows || !rel) {
         free(rel);
         mc_distrib2d_free(d);

@@ -2,6 +2,7 @@
  * place, with no allocation per token; format after Wavefront's "Object Files (.obj)" appendix B1. */
 #include "scene/obj.h"
 
+#include "core/alloc.h"
 #include "core/file.h"
 
 #include <errno.h>
@@ -22,7 +23,7 @@ static int vec3_push(struct vec3_array *a, vec3 x)
 {
     if (a->n == a->cap) {
         size_t ncap = a->cap ? a->cap * 2 : 1024;
-        vec3 *nv = realloc(a->v, ncap * sizeof *nv);
+        vec3 *nv = mc_realloc(a->v, ncap * sizeof *nv);
         if (!nv)
             return -1;
         a->v = nv;

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/alloc.h"
 #include "scene/lex.h"
 #include "scene/obj.h"
 
@@ -672,7 +673,7 @@ static void *grow(struct parser *p, void *array, size_t *cap, size_t count, size
     if (count < *cap)
         return array;
     ncap = *cap ? *cap * 2 : 16;
-    if (!(q = realloc(array, ncap * elem)))
+    if (!(q = mc_realloc(array, ncap * elem)))
         fail_nomem(p);
     *cap = ncap;
     return q;
@@ -898,7 +899,7 @@ static char *mesh_path(struct parser *p, const struct token *file)
 {
     size_t nb = p->base_dir && file->text[0] != '/' ? strlen(p->base_dir) : 0;
     int slash = nb > 0 && p->base_dir[nb - 1] != '/';
-    char *path = malloc(nb + (size_t)slash + file->len + 1);
+    char *path = mc_malloc(nb + (size_t)slash + file->len + 1);
     if (!path)
         fail_nomem(p);
     if (nb)

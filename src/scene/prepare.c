@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/alloc.h"
+
 /* Move the moving primitives behind the static ones, keeping the order within each group, and set
  * s->static_count. A static scene is left untouched, so its BVH is built exactly as without
  * motion. */
@@ -23,7 +25,7 @@ static mcrt_status partition(struct scene *s, mc_diag *d)
     s->static_count = s->prim_count - n_moving;
     if (n_moving == 0)
         return MCRT_OK;
-    moving = malloc(n_moving * sizeof *moving);
+    moving = mc_malloc(n_moving * sizeof *moving);
     if (!moving)
         return mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
     n_moving = 0;
@@ -48,7 +50,7 @@ static mcrt_status build_motion_bvh(struct scene *s, mc_diag *d)
     mcrt_status st;
     if (n == 0) /* still built, empty, so that its bounds read as empty (light.c) */
         return mc_bvh_build(&s->motion_bvh, prims, 0, d);
-    bounds = malloc(n * sizeof *bounds);
+    bounds = mc_malloc(n * sizeof *bounds);
     if (!bounds)
         return mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
     for (i = 0; i < n; i++)
@@ -121,7 +123,7 @@ mcrt_status mc_scene_prepare(struct scene *s, mc_diag *d)
         if (s->env_light < 0)
             return mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
     }
-    power = malloc((s->light_count ? s->light_count : 1) * sizeof *power);
+    power = mc_malloc((s->light_count ? s->light_count : 1) * sizeof *power);
     if (!power)
         return mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
     s->light_scene.prims = s->prims;

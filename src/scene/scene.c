@@ -4,12 +4,14 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/alloc.h"
+
 #define MC_INTEGRATOR_NAME(id, name) [INTEGRATOR_##id] = #name,
 const char *const mc_integrator_names[INTEGRATOR_COUNT + 1] = {
     MC_INTEGRATORS(MC_INTEGRATOR_NAME)[INTEGRATOR_COUNT] = NULL};
 #undef MC_INTEGRATOR_NAME
 
-void mc_scene_init(struct scene *s)
+int mc_scene_init(struct scene *s)
 {
     struct material def;
     memset(s, 0, sizeof *s);
@@ -32,7 +34,7 @@ void mc_scene_init(struct scene *s)
     def.kind = MC_MATERIAL_KIND(diffuse);
     def.color = v3s(0.8f);
     def.ior = 1.5f;
-    mc_scene_add_material(s, &def); /* cannot fail to matter: a failed add leaves count 0, caught by prepare */
+    return mc_scene_add_material(s, &def) < 0 ? -1 : 0;
 }
 
 void mc_scene_free(struct scene *s)
@@ -56,7 +58,7 @@ static int push(void **array, size_t *count, size_t *cap, size_t elem, const voi
         return -1;
     if (*count == *cap) {
         size_t ncap = *cap ? *cap * 2 : 16;
-        void *p = realloc(*array, ncap * elem);
+        void *p = mc_realloc(*array, ncap * elem);
         if (!p)
             return -1;
         *array = p;

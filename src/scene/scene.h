@@ -71,8 +71,10 @@ struct scene {
     int prepared;
 };
 
-/* An empty scene holding all defaults (and the default material). */
-void mc_scene_init(struct scene *s);
+/* An empty scene holding all defaults and the default material (material 0, which the parser's
+ * materials follow); 0, or -1 when out of memory for that material (the scene is then empty, to
+ * be freed). */
+int mc_scene_init(struct scene *s);
 void mc_scene_free(struct scene *s);
 
 /* Adders: each returns the new element's index, or -1 when out of memory. */

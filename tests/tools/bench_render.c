@@ -67,7 +67,7 @@ static int render_once(mcrt_scene *s, int all_features, int threads, int spp, do
         return 0;
     }
     *cpu = cpu_seconds() - c0;
-    mcrt_render_stats(r, &st);
+    mcrt_render_stats(r, &st, sizeof st);
     mcrt_scene_film(s, &w, &h, NULL);
     *seconds = st.seconds;
     *samples = (long long)w * h * spp;

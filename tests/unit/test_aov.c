@@ -72,7 +72,7 @@ int main(void)
          mc_image_read(path, &im, &d) == MCRT_OK;
     for (i = 0; ok && i < 8 * 6 * 3; i++)
         est += var.rgb[i] / ((double)im.rgb[i] * im.rgb[i] + 0.01);
-    mcrt_render_stats(r, &st);
+    mcrt_render_stats(r, &st, sizeof st);
     T_NEAR(est / (8 * 6 * 3) / st.est_relmse, 1.0, 1e-5, "est_relmse from the layers");
     T_CHECK(st.est_relmse > 0.0, "the estimate is positive: %g", st.est_relmse);
     mc_image_free(&im);

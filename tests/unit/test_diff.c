@@ -151,7 +151,7 @@ static void test_layers(void)
                     strstr(d.msg, "albedo"), "a missing layer: %s", d.msg);
         mcrt_diff_options_init(&o);
         o.layer = "variance";
-        T_CHECK(mcrt_diff(p, p, &o, &res, err, sizeof err) == MCRT_OK && res.whole.mse == 0.0 &&
+        T_CHECK(mcrt_diff(p, p, &o, &res, sizeof res, err, sizeof err) == MCRT_OK && res.whole.mse == 0.0 &&
                     res.width == W && !err[0], "mcrt_diff of a layer with itself: %s", err);
         unlink(p);
     }
@@ -159,7 +159,7 @@ static void test_layers(void)
             "PFM refuses layers");
     T_CHECK(access(q, F_OK) != 0, "and leaves no file");
     mcrt_diff_options_init(&o);
-    T_CHECK(mcrt_diff(q, q, &o, &res, err, sizeof err) != MCRT_OK && res.width == 0 &&
+    T_CHECK(mcrt_diff(q, q, &o, &res, sizeof res, err, sizeof err) != MCRT_OK && res.width == 0 &&
                 strstr(err, "a.pfm"), "a missing image: %s", err);
     rmdir(dir);
     free(a);

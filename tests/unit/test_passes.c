@@ -56,7 +56,7 @@ int main(void)
     o.crop_x0 = o.crop_y0 = o.crop_x1 = o.crop_y1 = 0;
     o.target_error = 1e9;
     a = run(s, &o, MCRT_OK);
-    mcrt_render_stats(a, &st);
+    mcrt_render_stats(a, &st, sizeof st);
     pa = mcrt_render_pixels(a, NULL, NULL);
     T_CHECK(st.passes == 1 && st.spp == 4 && pa && memcmp(pa, pf, 40 * 30 * 3 * sizeof *pa) == 0,
             "one pass is the plain render (passes %d, spp %d)", st.passes, st.spp);
@@ -67,7 +67,7 @@ int main(void)
     a = run(s, &o, MCRT_OK);
     o.threads = 1;
     b = run(s, &o, MCRT_OK);
-    mcrt_render_stats(a, &st);
+    mcrt_render_stats(a, &st, sizeof st);
     pa = mcrt_render_pixels(a, NULL, NULL);
     pb = mcrt_render_pixels(b, NULL, NULL);
     T_NOTE("target 0.01: %d passes, %d spp, est relMSE %.4g", st.passes, st.spp, st.est_relmse);
