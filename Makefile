@@ -43,10 +43,10 @@ endif
 LDLIBS := $(IO_LIBS) $(LDLIBS)
 
 # The configuration, recorded in $(O)/config.mk: the compiler, its flags and what pkg-config
-# found. Every object and link depends on that file, which is rewritten (and so made newer than
-# them) only when its text changes. So a library installed since the last build (as by `make run`
-# after `make`), or WERROR=1, rebuilds everything (seconds), and an unchanged one nothing.
-# := takes the text before target-specific flags (src/io/, bench) could vary it.
+# found. Every object and link depends on that file, so that a library installed since the last
+# build (as by `make run` after `make`), or WERROR=1, rebuilds everything (seconds), and an
+# unchanged configuration nothing. := fixes the text before target-specific flags (src/io/, bench)
+# could vary it.
 define CONFIG :=
 CC = $(CC)
 CFLAGS = $(CFLAGS)
@@ -76,16 +76,18 @@ TOOL_BIN := $(TOOL_SRC:tests/tools/%.c=$(O)/tests/%)
 .PHONY: all run test test-build check tsan fuzz bench install uninstall clean setup ref plots
 all: $(O)/mcrt $(O)/libmcrt.a
 
+# $(O)/config.mk, the CONFIG above: the recipe runs at every build (FORCE) but writes the file only
+# when its text differs ($(call same,A,B): A and B are equal strings), so that only a change makes
+# it newer than the objects. The missing-library notes come from here, the build itself, and never
+# from the make of `make run` or `make test` that runs set-up (which may install the library).
 CONFIG_MK = $(O)/config.mk
 same = $(and $(findstring $(1),$(2)),$(findstring $(2),$(1)))
-# The missing-library notes are printed here, by the build itself: not by a make that only runs
-# set-up (which may install the library) before the build.
 $(CONFIG_MK): FORCE
 	$(if $(call same,$(file <$@),$(CONFIG)),,$(shell mkdir -p $(@D))$(file >$@,$(CONFIG)))
 	@$(if $(HAVE_PNG),:,echo "mcrt: libpng not found by pkg-config: building without PNG output" \
-	  "(apt-get install libpng-dev, then make again; make run and make test install it as root)")
+	  "(apt-get install pkgconf libpng-dev, then make again; make run and make test do it as root)")
 	@$(if $(HAVE_EXR),:,echo "mcrt: OpenEXR not found by pkg-config: building without EXR output" \
-	  "(apt-get install libopenexr-dev, then make again; make run and make test install it as root)")
+	  "(apt-get install pkgconf libopenexr-dev, then make again; make run and make test do it as root)")
 FORCE:
 
 $(O)/obj/src/io/%.o: CFLAGS += $(IO_CFLAGS)
@@ -129,7 +131,11 @@ $(O)/tests/%: tests/tools/%.c $(O)/libmcrt.a $(CONFIG_MK)
 
 # Set-up for a fresh Debian machine: install what the build and tests need when root, otherwise
 # print the exact command and stop. SETUP=0 skips it (for machines that are not Debian).
-DEBS = pkgconf libpng-dev libopenexr-dev openexr groff-base
+# pkgconf finds the libraries; libpng-dev and libopenexr-dev are the PNG and EXR output; openexr
+# has exrheader and exrmaketiled, which read back what mcrt writes; groff-base lints the manuals
+# and man-db's man shows them (the README's `man -l`). The tests that need what is left out
+# (python3, gnuplot) count as skipped. The README lists the same packages.
+DEBS = pkgconf libpng-dev libopenexr-dev openexr groff-base man-db
 setup:
 	@if [ "$(SETUP)" = 1 ] && command -v dpkg-query >/dev/null 2>&1; then \
 	  missing=""; for p in $(DEBS); do \

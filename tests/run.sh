@@ -37,8 +37,8 @@ done >"$dir/list"
 # timed yet counts as slow), so that no long one starts last and runs alone at the end.
 times=$O/tests/times
 mkdir -p "$O/tests" && [ -f "$times" ] || : >"$times"
-awk 'NR == FNR { t[$2] = $1; next }
-     { n = $0; sub(/.*\//, "", n); print (n in t ? t[n] : 1e9), $0 }' "$times" "$dir/list" |
+awk 'FILENAME == ARGV[1] { t[$2] = $1; next }
+     { n = $0; sub(/.*\//, "", n); print (n in t ? t[n] : 999999), $0 }' "$times" "$dir/list" |
     sort -k1,1rn -k2 | cut -d ' ' -f 2- >"$dir/order"
 xargs -P "$jobs" -I '{}' sh "$0" --one '{}' "$dir" <"$dir/order" &
 pool=$!
