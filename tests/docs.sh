@@ -4,7 +4,8 @@
 # those in the parser's tables); mcrt.1 and `mcrt --help` name every option (and mcrt.1 every
 # option --help shows); libmcrt.3 gives every function of src/mcrt.h with the header's exact
 # prototype, every status code and struct field, and an example that compiles; versions agree;
-# every scene renders and the README lists it; the Cornell box shows its red wall on the left.
+# the README lists the set-up's Debian packages; every scene renders and the README lists it; the
+# Cornell box shows its red wall on the left.
 # Run from the repository root after the build; $O is the build folder. Prints "ok ...", "FAIL ..."
 # or "skip ..." per check, then "N passed, N failed" (", N skipped" when some were).
 . tests/harness.sh.inc
@@ -184,6 +185,14 @@ if [ -x "$MCRT" ]; then
     else
         fail "mcrt --version does not show $version: $("$MCRT" --version 2>&1 | head -n 1)"
     fi
+fi
+
+# ---- README: the packages set-up installs (DEBS in the Makefile), listed as they are ----
+debs=$(sed -n 's/^DEBS = //p' Makefile)
+if [ -n "$debs" ] && tr '\n' ' ' <README.md | grep -qF "(\`$debs\`)"; then
+    ok "README.md lists the set-up's packages: $debs"
+else
+    fail "README.md does not list the set-up's packages as (\`$debs\`)"
 fi
 
 # ---- scenes ----
