@@ -268,7 +268,9 @@ if command -v script >/dev/null 2>&1 && script -qec true /dev/null >/dev/null 2>
     if [ ! -s "$tmp/quiet.txt" ]; then ok "--quiet: no progress bar on a terminal"; else
         fail "--quiet on a terminal" "$(od -c "$tmp/quiet.txt" | head -5)"; fi
 else
-    skip "progress bar on a terminal" "script(1) is not installed or cannot make a terminal here"
+    for check in "progress bar on a terminal" "--quiet: no progress bar on a terminal"; do
+        skip "$check" "script(1) is not installed or cannot make a terminal here"
+    done
 fi
 
 finish
