@@ -2,7 +2,8 @@
 #
 #   make            build build/mcrt and build/libmcrt.a (with whichever image libraries are present)
 #   make run        set up (installs Debian packages when root), build, render scenes/cornell.mcrt
-#   make test       set up, build and run every test; the last line is "N passed, N failed"
+#   make test       set up, build and run every test, JOBS at a time (default: the number of cores);
+#                   the last line is "N passed, N failed, N skipped"
 #   make check      the tests under AddressSanitizer + UndefinedBehaviorSanitizer (build-san/)
 #   make tsan       a multi-threaded render of every scene under ThreadSanitizer (build-tsan/)
 #   make fuzz       libFuzzer (clang) on the scene parser and the OBJ reader, FUZZ_TIME s each (build-fuzz/)
@@ -10,16 +11,19 @@
 #   make ref        regenerate the POV-Ray references in ref/ (needs povray; not part of make test)
 #   make install    PREFIX=/usr/local, DESTDIR honoured
 #   V=1             show full commands
+#   WERROR=1        warnings are errors (as .ci/run builds; a plain make does not, so that a newer
+#                   compiler's new warning does not stop a user's build)
 
 CC      ?= cc
 O       ?= build
 PREFIX  ?= /usr/local
 OPT     ?= -O2 -g
 SETUP   ?= 1
+WERROR  ?= 0
 
 CSTD    = -std=c99 -D_POSIX_C_SOURCE=200809L
 WARN    = -Wall -Wextra -Wpedantic -Wshadow -Wstrict-prototypes -Wmissing-prototypes \
-          -Wold-style-definition -Wvla -Wformat=2
+          -Wold-style-definition -Wvla -Wformat=2 $(if $(filter 1,$(WERROR)),-Werror)
 CFLAGS  += $(CSTD) $(WARN) $(OPT) -Isrc -MMD -MP
 LDLIBS  = -lpthread -lm
 
@@ -30,17 +34,28 @@ HAVE_EXR := $(shell $(PKG_CONFIG) --exists OpenEXR 2>/dev/null && echo 1)
 ifeq ($(HAVE_PNG),1)
 IO_CFLAGS += -DMCRT_HAVE_PNG $(shell $(PKG_CONFIG) --cflags libpng)
 IO_LIBS   += $(shell $(PKG_CONFIG) --libs libpng)
-else
-$(info mcrt: libpng not found by pkg-config: building without PNG (apt-get install libpng-dev))
 endif
 ifeq ($(HAVE_EXR),1)
 # OpenEXR's C headers are not -Wpedantic clean under C99: include them as system headers.
 IO_CFLAGS += -DMCRT_HAVE_EXR $(shell $(PKG_CONFIG) --cflags-only-I OpenEXR | sed 's/-I/-isystem /g')
 IO_LIBS   += $(filter -L% -lOpenEXRCore%,$(shell $(PKG_CONFIG) --libs OpenEXR))
-else
-$(info mcrt: OpenEXR not found by pkg-config: building without EXR (apt-get install libopenexr-dev))
 endif
 LDLIBS := $(IO_LIBS) $(LDLIBS)
+
+# The configuration, recorded in $(O)/config.mk: the compiler, its flags and what pkg-config
+# found. Every object and link depends on that file, so that a library installed since the last
+# build (as by `make run` after `make`), or WERROR=1, rebuilds everything (seconds), and an
+# unchanged configuration nothing. := fixes the text before target-specific flags (src/io/, bench)
+# could vary it.
+define CONFIG :=
+CC = $(CC)
+CFLAGS = $(CFLAGS)
+LDFLAGS = $(LDFLAGS)
+LDLIBS = $(LDLIBS)
+HAVE_PNG = $(HAVE_PNG)
+HAVE_EXR = $(HAVE_EXR)
+IO_CFLAGS = $(IO_CFLAGS)
+endef
 
 ifeq ($(V),1)
 Q =
@@ -58,11 +73,25 @@ UNIT_BIN := $(UNIT_SRC:tests/unit/%.c=$(O)/tests/%) $(BVH_VARIANTS:%=$(O)/tests/
 TOOL_SRC := $(wildcard tests/tools/*.c)
 TOOL_BIN := $(TOOL_SRC:tests/tools/%.c=$(O)/tests/%)
 
-.PHONY: all run test check tsan fuzz bench install uninstall clean setup ref plots
+.PHONY: all run test test-build check tsan fuzz bench install uninstall clean setup ref plots
 all: $(O)/mcrt $(O)/libmcrt.a
 
+# $(O)/config.mk, the CONFIG above: the recipe runs at every build (FORCE) but writes the file only
+# when its text differs ($(call same,A,B): A and B are equal strings), so that only a change makes
+# it newer than the objects. The missing-library notes come from here, the build itself, and never
+# from the make of `make run` or `make test` that runs set-up (which may install the library).
+CONFIG_MK = $(O)/config.mk
+same = $(and $(findstring $(1),$(2)),$(findstring $(2),$(1)))
+$(CONFIG_MK): FORCE
+	$(if $(call same,$(file <$@),$(CONFIG)),,$(shell mkdir -p $(@D))$(file >$@,$(CONFIG)))
+	@$(if $(HAVE_PNG),:,echo "mcrt: libpng not found by pkg-config: building without PNG output" \
+	  "(apt-get install pkgconf libpng-dev, then make again; make run and make test do it as root)")
+	@$(if $(HAVE_EXR),:,echo "mcrt: OpenEXR not found by pkg-config: building without EXR output" \
+	  "(apt-get install pkgconf libopenexr-dev, then make again; make run and make test do it as root)")
+FORCE:
+
 $(O)/obj/src/io/%.o: CFLAGS += $(IO_CFLAGS)
-$(O)/obj/%.o: %.c
+$(O)/obj/%.o: %.c $(CONFIG_MK)
 	@mkdir -p $(@D)
 	@$(if $(Q),echo "  CC      $<")
 	$(Q)$(CC) $(CFLAGS) -c $< -o $@
@@ -71,11 +100,11 @@ $(O)/libmcrt.a: $(LIB_OBJ)
 	@$(if $(Q),echo "  AR      $@")
 	$(Q)rm -f $@ && $(AR) rcs $@ $^
 
-$(O)/mcrt: $(CLI_OBJ) $(O)/libmcrt.a
+$(O)/mcrt: $(CLI_OBJ) $(O)/libmcrt.a $(CONFIG_MK)
 	@$(if $(Q),echo "  LD      $@")
 	$(Q)$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $(CLI_OBJ) $(O)/libmcrt.a $(LDLIBS)
 
-$(O)/tests/%: tests/unit/%.c tests/t.h tests/prim_util.h $(O)/libmcrt.a
+$(O)/tests/%: tests/unit/%.c tests/t.h tests/prim_util.h $(O)/libmcrt.a $(CONFIG_MK)
 	@mkdir -p $(@D)
 	@$(if $(Q),echo "  CC      $<")
 	$(Q)$(CC) $(CFLAGS) -Itests -o $@ $< $(O)/libmcrt.a $(LDLIBS)
@@ -85,24 +114,28 @@ $(O)/tests/%: tests/unit/%.c tests/t.h tests/prim_util.h $(O)/libmcrt.a
 # pass over at run time).
 BVH_VARIANT_FLAGS_portable = -DMCRT_BVH_PORTABLE
 BVH_VARIANT_FLAGS_sse = -DMCRT_BVH_NO_AVX
-$(BVH_VARIANTS:%=$(O)/obj/bvh_%.o): $(O)/obj/bvh_%.o: src/geom/bvh.c
+$(BVH_VARIANTS:%=$(O)/obj/bvh_%.o): $(O)/obj/bvh_%.o: src/geom/bvh.c $(CONFIG_MK)
 	@mkdir -p $(@D)
 	@$(if $(Q),echo "  CC      $< ($*)")
 	$(Q)$(CC) $(CFLAGS) $(BVH_VARIANT_FLAGS_$*) -c $< -o $@
 
-$(BVH_VARIANTS:%=$(O)/tests/test_bvh_%): $(O)/tests/test_bvh_%: tests/unit/test_bvh.c tests/t.h tests/prim_util.h $(O)/obj/bvh_%.o $(O)/libmcrt.a
+$(BVH_VARIANTS:%=$(O)/tests/test_bvh_%): $(O)/tests/test_bvh_%: tests/unit/test_bvh.c tests/t.h tests/prim_util.h $(O)/obj/bvh_%.o $(O)/libmcrt.a $(CONFIG_MK)
 	@mkdir -p $(@D)
 	@$(if $(Q),echo "  CC      $< ($* BVH)")
 	$(Q)$(CC) $(CFLAGS) -Itests -o $@ $< $(O)/obj/bvh_$*.o $(O)/libmcrt.a $(LDLIBS)
 
-$(O)/tests/%: tests/tools/%.c $(O)/libmcrt.a
+$(O)/tests/%: tests/tools/%.c $(O)/libmcrt.a $(CONFIG_MK)
 	@mkdir -p $(@D)
 	@$(if $(Q),echo "  CC      $<")
 	$(Q)$(CC) $(CFLAGS) -Itests -o $@ $< $(O)/libmcrt.a $(LDLIBS)
 
 # Set-up for a fresh Debian machine: install what the build and tests need when root, otherwise
 # print the exact command and stop. SETUP=0 skips it (for machines that are not Debian).
-DEBS = pkgconf libpng-dev libopenexr-dev openexr groff-base
+# pkgconf finds the libraries; libpng-dev and libopenexr-dev are the PNG and EXR output; openexr
+# has exrheader and exrmaketiled, which read back what mcrt writes; groff-base lints the manuals
+# and man-db's man shows them (the README's `man -l`). The tests that need what is left out
+# (python3, gnuplot) count as skipped. The README lists the same packages.
+DEBS = pkgconf libpng-dev libopenexr-dev openexr groff-base man-db
 setup:
 	@if [ "$(SETUP)" = 1 ] && command -v dpkg-query >/dev/null 2>&1; then \
 	  missing=""; for p in $(DEBS); do \
@@ -126,7 +159,7 @@ run: setup
 
 test: setup
 	@$(MAKE) --no-print-directory test-build
-	@O=$(O) CC="$(CC)" LDFLAGS="$(LDFLAGS)" sh tests/run.sh
+	@O=$(O) CC="$(CC)" LDFLAGS="$(LDFLAGS)" JOBS="$(JOBS)" sh tests/run.sh
 
 test-build: all $(UNIT_BIN) $(TOOL_BIN)
 
@@ -162,7 +195,7 @@ fuzz:
 	  build-fuzz/corpus_obj tests/fuzz/corpus_obj > build-fuzz/fuzz_obj.log 2>&1; s2=$$?; wait $$!; s1=$$?; \
 	tail -n 3 build-fuzz/fuzz_scene.log build-fuzz/fuzz_obj.log; [ $$s1 = 0 ] && [ $$s2 = 0 ]
 
-$(O)/fuzz/%: tests/fuzz/%.c $(O)/libmcrt.a
+$(O)/fuzz/%: tests/fuzz/%.c $(O)/libmcrt.a $(CONFIG_MK)
 	@mkdir -p $(@D)
 	@$(if $(Q),echo "  CC      $<")
 	$(Q)$(CC) $(CFLAGS) -fsanitize=fuzzer $(LDFLAGS) -o $@ $< $(O)/libmcrt.a $(LDLIBS)

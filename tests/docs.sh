@@ -5,19 +5,12 @@
 # option --help shows); every integrator of the library's table is named by mcrt.1, mcrt.5,
 # libmcrt.3 and mcrt.h; libmcrt.3 gives every function of src/mcrt.h with the header's exact
 # prototype, every status code and struct field, and an example that compiles; versions agree;
-# every scene renders and the README lists it; the Cornell box shows its red wall on the left.
-# Run from the repository root after the build; $O is the build folder. Prints "ok ..." or
-# "FAIL ..." per check, then "N passed, N failed".
-O=${O:-build}
+# the README lists the set-up's Debian packages; every scene renders and the README lists it; the
+# Cornell box shows its red wall on the left.
+# Run from the repository root after the build; $O is the build folder. Prints "ok ...", "FAIL ..."
+# or "skip ..." per check, then "N passed, N failed" (", N skipped" when some were).
+. tests/harness.sh.inc
 CC=${CC:-cc}
-MCRT=$O/mcrt
-passed=0
-failed=0
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-
-ok() { echo "ok $*"; passed=$((passed + 1)); }
-fail() { echo "FAIL $*"; failed=$((failed + 1)); }
 
 # The lines of a page that define terms (.B, .BI, .BR, .SS, .TP ...), with font changes and
 # escapes removed, so that `.BI \-\-spp " n"` reads `.BI --spp " n"`.
@@ -57,14 +50,14 @@ for page in man/mcrt.1 man/mcrt.5 man/libmcrt.3; do
         fail "groff -man -ww -z $page:"
         sed 's/^/    /' "$tmp/lint"
     fi
-    if command -v man >/dev/null 2>&1; then
-        if MANWIDTH=80 man -l "$page" >"$tmp/man.out" 2>"$tmp/man.err" && [ ! -s "$tmp/man.err" ] &&
-            [ -s "$tmp/man.out" ]; then
-            ok "man -l $page renders"
-        else
-            fail "man -l $page:"
-            sed 's/^/    /' "$tmp/man.err"
-        fi
+    if ! command -v man >/dev/null 2>&1; then
+        skip "man -l $page renders" "man not installed (apt-get install man-db)"
+    elif MANWIDTH=80 man -l "$page" >"$tmp/man.out" 2>"$tmp/man.err" && [ ! -s "$tmp/man.err" ] &&
+        [ -s "$tmp/man.out" ]; then
+        ok "man -l $page renders"
+    else
+        fail "man -l $page:"
+        sed 's/^/    /' "$tmp/man.err"
     fi
 done
 
@@ -207,6 +200,14 @@ if [ -x "$MCRT" ]; then
     fi
 fi
 
+# ---- README: the packages set-up installs (DEBS in the Makefile), listed as they are ----
+debs=$(sed -n 's/^DEBS = //p' Makefile)
+if [ -n "$debs" ] && tr '\n' ' ' <README.md | grep -qF "(\`$debs\`)"; then
+    ok "README.md lists the set-up's packages: $debs"
+else
+    fail "README.md does not list the set-up's packages as (\`$debs\`)"
+fi
+
 # ---- scenes ----
 for scene in scenes/*.mcrt; do
     name=$(basename "$scene" .mcrt)
@@ -255,5 +256,4 @@ elif [ -x "$MCRT" ]; then
     fail "cornell.mcrt does not render to PFM"
 fi
 
-echo "$passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+finish

@@ -24,7 +24,10 @@ finish() {
     exit
 }
 
-if make -s --no-print-directory install O="$O" DESTDIR="$root" PREFIX=/usr >"$tmp/make" 2>&1; then
+# -o: install what the build made, as it was configured (say, with the sanitizers of make check),
+# never rebuilding it because this make's flags differ from those recorded in $O/config.mk.
+if make -s --no-print-directory -o "$O/config.mk" install O="$O" DESTDIR="$root" PREFIX=/usr \
+    >"$tmp/make" 2>&1; then
     ok "make install DESTDIR=\$tmp PREFIX=/usr"
 else
     fail "make install DESTDIR=\$tmp PREFIX=/usr:"
