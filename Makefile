@@ -76,19 +76,28 @@ TOOL_BIN := $(TOOL_SRC:tests/tools/%.c=$(O)/tests/%)
 .PHONY: all run test test-build check tsan fuzz bench install uninstall clean setup ref plots
 all: $(O)/mcrt $(O)/libmcrt.a
 
-# $(O)/config.mk, the CONFIG above: the recipe runs at every build (FORCE) but writes the file only
-# when its text differs ($(call same,A,B): A and B are equal strings), so that only a change makes
-# it newer than the objects. The missing-library notes come from here, the build itself, and never
-# from the make of `make run` or `make test` that runs set-up (which may install the library).
+# $(O)/config.mk, the CONFIG above, is written while this Makefile is read, and only when its text
+# differs ($(call same,A,B): A and B are equal strings), so that only a change makes it newer than
+# the objects. (A rule with a FORCE prerequisite would not do: make counts a target whose recipe
+# ran as changed, and would rebuild everything every time.) It is written, and a missing library
+# reported, only by a make that builds here: not by the make of `make run` or `make test`, which
+# runs set-up (that may install the library) and then the build in a make of its own, nor by
+# those of check, tsan and fuzz, which build in other folders.
 CONFIG_MK = $(O)/config.mk
 same = $(and $(findstring $(1),$(2)),$(findstring $(2),$(1)))
-$(CONFIG_MK): FORCE
-	$(if $(call same,$(file <$@),$(CONFIG)),,$(shell mkdir -p $(@D))$(file >$@,$(CONFIG)))
-	@$(if $(HAVE_PNG),:,echo "mcrt: libpng not found by pkg-config: building without PNG output" \
-	  "(apt-get install pkgconf libpng-dev, then make again; make run and make test do it as root)")
-	@$(if $(HAVE_EXR),:,echo "mcrt: OpenEXR not found by pkg-config: building without EXR output" \
-	  "(apt-get install pkgconf libopenexr-dev, then make again; make run and make test do it as root)")
-FORCE:
+NO_BUILD_GOALS = run test check tsan fuzz setup clean uninstall
+ifneq ($(filter-out $(NO_BUILD_GOALS),$(or $(MAKECMDGOALS),all)),)
+ifeq ($(call same,$(file <$(CONFIG_MK)),$(CONFIG)),)
+$(shell mkdir -p $(O))
+$(file >$(CONFIG_MK),$(CONFIG))
+endif
+ifneq ($(HAVE_PNG),1)
+$(info mcrt: libpng not found by pkg-config: building without PNG output (apt-get install pkgconf libpng-dev, then make again; make run and make test do it as root))
+endif
+ifneq ($(HAVE_EXR),1)
+$(info mcrt: OpenEXR not found by pkg-config: building without EXR output (apt-get install pkgconf libopenexr-dev, then make again; make run and make test do it as root))
+endif
+endif
 
 $(O)/obj/src/io/%.o: CFLAGS += $(IO_CFLAGS)
 $(O)/obj/%.o: %.c $(CONFIG_MK)
