@@ -2,13 +2,11 @@
  * loop shared by the per-ray ones (see integrator.h). */
 #include "integrator/integrator.h"
 
-#include <stdio.h>
-#include <string.h>
-
 #include "render/passes.h"
 
 #define MC_INTEGRATOR_ENTRY(id, name) [INTEGRATOR_##id] = &mc_integrator_##name,
-static const struct integrator *const table[INTEGRATOR_COUNT] = {MC_INTEGRATORS(MC_INTEGRATOR_ENTRY)};
+static const struct integrator *const table[INTEGRATOR_COUNT] = {
+    MC_INTEGRATORS(MC_INTEGRATOR_ENTRY)};
 #undef MC_INTEGRATOR_ENTRY
 
 const struct integrator *mc_integrator_get(enum integrator_kind kind) { return table[kind]; }

@@ -1,7 +1,8 @@
 /* integrators.h: the list of integrators, one line each, which everything that names them reads:
- * the scene's `integrator { method NAME }` (scene.h's enum integrator_kind, the parser's words),
- * mcrt_options.integrator and --integrator (through src/integrator/integrators.c, which maps each
- * line to its descriptor), --help, and tests/docs.sh (through `mcrt --list integrators`).
+ * the scene's `integrator { method NAME }` (scene.h's enum integrator_kind and
+ * mc_integrator_names, the parser's words), mcrt_options.integrator and --integrator (through
+ * mcrt_names and src/integrator/integrators.c, which maps each line to its descriptor), --help,
+ * and tests/docs.sh (through `mcrt --list integrator`).
  *
  * X(ID, name): ID gives the enum constant INTEGRATOR_<ID>; name is the word, and the descriptor
  * `const struct integrator mc_integrator_<name>` (integrator/integrator.h) is defined in a file
