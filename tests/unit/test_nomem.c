@@ -245,6 +245,22 @@ static int write_grid(const char *path)
     return fclose(f) == 0;
 }
 
+/* The scene above must keep using every kind of the library's tables, so that a new material or
+ * shape is swept too: each material kind appears as "{ KIND", each shape block as "KIND {". */
+static void test_scene_covers_tables(void)
+{
+    static const char *const sets[] = {"material", "shape"};
+    size_t i;
+    for (i = 0; i < sizeof sets / sizeof sets[0]; i++) {
+        const char *const *names = mcrt_names(sets[i]);
+        char word[80];
+        for (; names && *names; names++) {
+            snprintf(word, sizeof word, i == 0 ? "{ %s" : "%s {", *names);
+            T_CHECK(strstr(scene_head, word) != NULL, "the scene uses the %s %s", sets[i], *names);
+        }
+    }
+}
+
 int main(void)
 {
     char grid[64], msg[512];
@@ -256,6 +272,7 @@ int main(void)
         perror(dir);
         return 1;
     }
+    test_scene_covers_tables();
     snprintf(grid, sizeof grid, "%s/grid.obj", dir);
     T_CHECK(write_grid(grid), "write %s", grid);
     snprintf(scene_text, sizeof scene_text,
