@@ -195,10 +195,15 @@ const char *mc_args_names(const char *set, const char *sep, const char *last, ch
     return buf;
 }
 
-int mc_args_is_name(const char *set, const char *text)
+int mc_args_name(const char *name, const char *set, const char *text)
 {
     const char *const *names = mcrt_names(set);
+    char list[128];
     while (names && *names && strcmp(*names, text) != 0)
         names++;
-    return names && *names;
+    if (names && *names)
+        return 1;
+    fprintf(stderr, "mcrt: --%s: expected %s, got '%s'\n", name,
+            mc_args_names(set, ", ", " or ", list, sizeof list), text);
+    return 0;
 }

@@ -47,7 +47,8 @@ int mc_args_window(const char *name, const char *text, int out[4]);
  * before the final one ("a, b or c"); cut short when buf is too small. Returns buf. */
 const char *mc_args_names(const char *set, const char *sep, const char *last, char *buf,
                           size_t size);
-/* Whether text is one of the names of the library's set. */
-int mc_args_is_name(const char *set, const char *text);
+/* Whether text is one of the names of the library's set; if not, says which are, like
+ * mc_args_int. */
+int mc_args_name(const char *name, const char *set, const char *text);
 
 #endif

@@ -305,12 +305,8 @@ static int parse_render_args(int argc, char **argv, struct render_args *a)
                 return STATUS_USAGE;
             break;
         case OPT_INTEGRATOR:
-            if (!mc_args_is_name("integrator", v)) {
-                char names[128];
-                fprintf(stderr, "mcrt: --integrator: expected %s, got '%s'\n",
-                        mc_args_names("integrator", ", ", " or ", names, sizeof names), v);
+            if (!mc_args_name("integrator", "integrator", v))
                 return STATUS_USAGE;
-            }
             a->integrator = v;
             break;
         case OPT_ALL_FEATURES:
@@ -338,12 +334,8 @@ static int parse_render_args(int argc, char **argv, struct render_args *a)
             a->adaptive = 1;
             break;
         case OPT_SAMPLER:
-            if (!mc_args_is_name("sampler", v)) {
-                char names[128];
-                fprintf(stderr, "mcrt: --sampler: expected %s, got '%s'\n",
-                        mc_args_names("sampler", ", ", " or ", names, sizeof names), v);
+            if (!mc_args_name("sampler", "sampler", v))
                 return STATUS_USAGE;
-            }
             a->sampler = v;
             break;
         case OPT_QUIET:
