@@ -1,20 +1,12 @@
-/* passes.c: progressive passes over an integrator's pass (see passes.h). A pass renders into a scratch film
- * and is merged (Chan, Golub and LeVeque 1979) only when complete, so an interrupted render holds
- * whole passes: every pixel has the samples of each pass it was given (the same number in each
- * pixel unless adaptive). */
+/* passes.c: progressive passes over an integrator's pass (see passes.h). A pass renders into a
+ * scratch film and is merged (Chan, Golub and LeVeque 1979) only when complete, so an interrupted
+ * render holds whole passes: every pixel has the samples of each pass it was given (the same
+ * number in each pixel unless adaptive). */
 #include "render/passes.h"
 
-#include <time.h>
-
+#include "core/clock.h"
 #include "core/rng.h"
 #include "render/adaptive.h"
-
-static double now_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 uint64_t mc_pass_seed(uint64_t seed, int k)
 {
@@ -37,7 +29,7 @@ mcrt_status mc_render_passes(const struct render_settings *rs, mc_pass_fn pass_f
     struct adaptive ad = {0, NULL, NULL};
     uint64_t pixels = (uint64_t)f->width * (uint64_t)f->height, budget = UINT64_MAX;
     int limited = rs->time_budget > 0.0 || rs->target_error > 0.0;
-    double t0 = now_seconds(), elapsed;
+    double t0 = mc_seconds(), elapsed;
     mcrt_status st;
     out->passes = 0;
     out->samples = out->rays = out->nan_count = 0;
@@ -77,7 +69,7 @@ mcrt_status mc_render_passes(const struct render_settings *rs, mc_pass_fn pass_f
         mc_film_merge(f, &scratch);
         out->passes++;
         out->samples += given;
-        elapsed = now_seconds() - t0;
+        elapsed = mc_seconds() - t0;
         if (limited ? out->passes >= rs->max_passes : out->samples >= budget)
             break;
         if (rs->target_error > 0.0 && mc_film_est_relmse(f) <= rs->target_error)
@@ -87,6 +79,6 @@ mcrt_status mc_render_passes(const struct render_settings *rs, mc_pass_fn pass_f
     }
     mc_film_free(&scratch);
     mc_adaptive_free(&ad);
-    out->seconds = now_seconds() - t0;
+    out->seconds = mc_seconds() - t0;
     return st;
 }

@@ -3,10 +3,10 @@
 
 #include <pthread.h>
 #include <stdlib.h>
-#include <time.h>
 
 #include "core/alloc.h"
 #include "core/atomic.h"
+#include "core/clock.h"
 #include "render/render.h"
 
 struct job {
@@ -91,13 +91,6 @@ static void *work(void *arg)
     return NULL;
 }
 
-static double now_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 mcrt_status mc_tiles_run(const struct render_settings *rs, int x0, int y0, int width, int height,
                          mc_tile_fn fn, void *ctx, struct tile_result *out, mc_diag *d)
 {
@@ -105,7 +98,7 @@ mcrt_status mc_tiles_run(const struct render_settings *rs, int x0, int y0, int w
     struct worker *workers;
     pthread_t *threads;
     int i, running;
-    double t0 = now_seconds();
+    double t0 = mc_seconds();
     out->rays = out->nan_count = 0;
     out->cancelled = 0;
     j.rs = rs;
@@ -151,7 +144,7 @@ mcrt_status mc_tiles_run(const struct render_settings *rs, int x0, int y0, int w
     pthread_mutex_destroy(&j.report_lock);
     free(workers);
     free(threads);
-    out->seconds = now_seconds() - t0;
+    out->seconds = mc_seconds() - t0;
     out->cancelled = j.tiles_done < j.tile_count;
     return out->cancelled ? MCRT_ERR_CANCELLED : MCRT_OK;
 }
