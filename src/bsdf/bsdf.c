@@ -2,8 +2,6 @@
  * mc_material_ops (material.h), and the table of kinds generated from materials.def. */
 #include "bsdf/bsdf_impl.h"
 
-#include <string.h>
-
 const struct mc_material_kind mc_material_kinds[MC_MATERIAL_COUNT] = {
 #define MC_MATERIAL(name, value, noun, keys) {#name, MC_VALUE_##value, noun, keys, &mc_material_ops_##name},
 #include "bsdf/materials.def"
@@ -15,15 +13,6 @@ const char *const mc_material_names[MC_MATERIAL_COUNT + 1] = {
 #include "bsdf/materials.def"
 #undef MC_MATERIAL
     NULL};
-
-const struct mc_material_kind *mc_material_find(const char *name)
-{
-    int i;
-    for (i = 0; i < MC_MATERIAL_COUNT; i++)
-        if (strcmp(mc_material_kinds[i].name, name) == 0)
-            return &mc_material_kinds[i];
-    return NULL;
-}
 
 unsigned mc_material_lobes(const struct material *m)
 {

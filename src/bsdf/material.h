@@ -102,9 +102,6 @@ extern const struct mc_material_kind mc_material_kinds[MC_MATERIAL_COUNT];
 /* Their keywords, NULL at [MC_MATERIAL_COUNT] (core/names.h), for listing them (mcrt_names). */
 extern const char *const mc_material_names[MC_MATERIAL_COUNT + 1];
 
-/* The kind with this keyword, or NULL. */
-const struct mc_material_kind *mc_material_find(const char *name);
-
 /* The lobes of material m, for the scene's features. */
 enum { MC_LOBE_SPECULAR = 1 << 0, MC_LOBE_GLOSSY = 1 << 1 };
 unsigned mc_material_lobes(const struct material *m);
