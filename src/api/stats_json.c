@@ -37,6 +37,7 @@ static void json_number(FILE *f, const char *key, double value, const char *end)
 void mc_stats_json(FILE *f, const mcrt_stats *st, uint64_t seed, const char *scene,
                    const char *image)
 {
+    int i;
     fputs("{\n", f);
     json_string(f, "scene", scene);
     json_string(f, "image", image);
@@ -51,5 +52,16 @@ void mc_stats_json(FILE *f, const mcrt_stats *st, uint64_t seed, const char *sce
             st->passes, st->adaptive ? "true" : "false", st->spp_min, st->spp_max);
     /* An error that cannot be estimated (1 spp) is null. */
     json_number(f, "est_relmse", st->est_relmse, ",\n");
-    json_number(f, "efficiency", st->efficiency, "\n}\n");
+    json_number(f, "efficiency", st->efficiency, ",\n");
+    json_number(f, "relmse_slope", st->relmse_slope, ",\n");
+    /* The seconds to a relMSE of 1e-2, 1e-3, 1e-4 (mcrt_seconds_to_relmse). */
+    fputs("  \"seconds_to_relmse\": {", f);
+    for (i = 0; i < 3; i++) {
+        fprintf(f, "%s\"1e-%d\": ", i ? ", " : "", i + 2);
+        if (isfinite(st->seconds_to_relmse[i]))
+            fprintf(f, "%.6g", st->seconds_to_relmse[i]);
+        else
+            fputs("null", f);
+    }
+    fputs("}\n}\n", f);
 }
