@@ -99,11 +99,12 @@ int mc_film_pixel_variance(const struct film *f, const struct film_pixel *p, dou
 
 double mc_film_mean_squared(const struct film_pixel *p, int c)
 {
-    struct film_sums s;
-    if (p->half[0].count && p->half[1].count)
-        return p->half[0].mean[c] * p->half[1].mean[c];
-    s = mc_film_pixel_sums(p);
-    return s.mean[c] * s.mean[c];
+    struct film_sums s = mc_film_pixel_sums(p);
+    double m2 = s.mean[c] * s.mean[c], ab;
+    if (!p->half[0].count || !p->half[1].count)
+        return m2;
+    ab = p->half[0].mean[c] * p->half[1].mean[c];
+    return ab > 0.5 * m2 ? ab : 0.5 * m2;
 }
 
 void mc_film_resolve(const struct film *f, float *rgb)

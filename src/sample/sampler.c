@@ -50,12 +50,25 @@ uint32_t mc_permute(uint32_t i, uint32_t n, uint32_t key)
     return (i + key) % n;
 }
 
+void mc_sampler_grid(uint32_t spp, uint32_t *nx, uint32_t *ny)
+{
+    uint32_t d = (uint32_t)floor(sqrt((double)spp));
+    while (d > 1 && spp % d != 0)
+        d--;
+    if (spp / d <= 2 * d) {
+        *nx = spp / d;
+        *ny = d;
+    } else {
+        *nx = (uint32_t)ceil(sqrt((double)spp));
+        *ny = (spp + *nx - 1) / *nx;
+    }
+}
+
 void mc_sampler_pixel(struct sampler *s, enum sampler_kind kind, uint64_t seed, int x, int y, int spp)
 {
     s->kind = kind;
     s->spp = spp > 1 ? (uint32_t)spp : 1u;
-    s->nx = (uint32_t)ceil(sqrt((double)s->spp));
-    s->ny = (s->spp + s->nx - 1) / s->nx;
+    mc_sampler_grid(s->spp, &s->nx, &s->ny);
     s->scale[0] = 0x1p24 / s->spp;
     s->scale[1] = 0x1p24 / s->nx;
     s->scale[2] = 0x1p24 / s->ny;

@@ -18,9 +18,10 @@
  *
  *   random      independent uniform values: a PCG32 stream per (seed, pixel, index).
  *   stratified  a 1D dimension puts one value in each of spp equal strata; a 2D dimension puts at
- *               most one point in each cell of an nx×ny grid, nx = ⌈√spp⌉, ny = ⌈spp/nx⌉
- *               (exactly one when spp = nx·ny); jitter inside the stratum comes from the sample's
- *               PCG32 stream (Mitchell 1996; pbrt-v4 StratifiedSampler).
+ *               most one point in each cell of an nx×ny grid (mc_sampler_grid: exactly one
+ *               whenever spp has a factorisation of aspect at most 2, every power of two among
+ *               them); jitter inside the stratum comes from the sample's PCG32 stream (Mitchell
+ *               1996; pbrt-v4 StratifiedSampler).
  *   sobol       a 2D dimension is the first spp points of the Sobol (0,2)-sequence, a 1D
  *               dimension the first spp of van der Corput's; each with its own hash-based Owen
  *               scramble (Burley 2020, JCGT 9(4)). Owen scrambling makes every point uniform on
@@ -77,6 +78,13 @@ vec2 mc_sampler_2d(struct sampler *s);
 /* The next dimension as a double in [0, 1) with 53 bits (random, stratified) or 32 stratified
  * bits followed by 21 uniform ones (sobol): for choices among very many outcomes. */
 double mc_sampler_1d_double(struct sampler *s);
+
+/* The stratified sampler's 2D grid for spp samples: nx·ny = spp with ny the largest divisor of
+ * spp up to √spp, when nx = spp/ny is at most 2·ny (every cell holds one point: a half of a
+ * pixel's 64 samples is 8×4 rather than 6×6 with 4 cells empty, whose missing cells would add a
+ * share 4/36 of the random sampler's variance); otherwise nx = ⌈√spp⌉, ny = ⌈spp/nx⌉, and each
+ * cell holds at most one point. */
+void mc_sampler_grid(uint32_t spp, uint32_t *nx, uint32_t *ny);
 
 /* A bijection of [0, n) chosen by key, without memory: Kensler 2013, "Correlated Multi-Jittered
  * Sampling", Pixar Technical Memo 13-01, permute(). Requires i < n. */

@@ -218,7 +218,11 @@ static void test_stratified_strata(void)
         return;
     }
     for (spp = 1; spp <= 70; spp++) {
-        int nx = (int)ceil(sqrt((double)spp)), ny = (spp + nx - 1) / nx, px, k, i;
+        uint32_t gx, gy;
+        int nx, ny, px, k, i;
+        mc_sampler_grid((uint32_t)spp, &gx, &gy);
+        nx = (int)gx;
+        ny = (int)gy;
         for (px = 0; px < 3; px++) {
             draw_pixel(SAMPLER_STRATIFIED, 3, px, 2 * px, spp, v, NVAL, NVAL + 1);
             for (k = 0; k < NVAL; k++) {
@@ -248,6 +252,19 @@ static void test_stratified_strata(void)
         }
     }
     T_NOTE("stratified: 1D strata and 2D cells checked for spp 1..70 (%d full 2D grids)", full);
+    /* The grid: enough cells, none of a row to spare, and exact (one point per cell, aspect at
+     * most 2) at every power of two, the spp of a half of 2^(m+1). */
+    {
+        uint32_t n, gx, gy;
+        int grid_bad = 0;
+        for (n = 1; n <= 4096; n++) {
+            mc_sampler_grid(n, &gx, &gy);
+            grid_bad += gx * gy < n || gx * (gy - 1) >= n || gx < gy;
+            if ((n & (n - 1)) == 0)
+                grid_bad += gx * gy != n || gx > 2 * gy;
+        }
+        T_CHECK(grid_bad == 0, "mc_sampler_grid: %d bad grids for spp 1..4096", grid_bad);
+    }
     T_CHECK(bad1 == 0, "%d 1D dimensions are not one value per stratum", bad1);
     T_CHECK(bad2 == 0, "%d 2D dimensions put two points in a cell (or miss one of a full grid)", bad2);
     free(v);
