@@ -43,12 +43,13 @@ static const char usage_tail[] =
     "  --stats FILE        write statistics as JSON (size, spp, threads, seconds, rays, NaNs,\n"
     "                      estimated relative MSE, efficiency)\n";
 static const char usage_after_aov[] =
-    "                      (see mcrt(1)); layer NAME has channels NAME.R/G/B\n"
+    "                      (see mcrt(1)); layer NAME has channels NAME.R/G/B, and halves\n"
+    "                      the layers A and B, the means of each half of a pixel's samples\n"
     "  --crop x0,y0,x1,y1  render only pixels x0 <= x < x1, y0 <= y < y1 (each as in the\n"
     "                      whole image with the same seed)\n"
     "  --time SECONDS      render passes of --spp samples until the time is spent\n"
     "  --target-error E    render passes of --spp samples until the estimated relative MSE\n"
-    "                      is at most E\n"
+    "                      is at most E; the progress bar shows the predicted time to it\n"
     "  --adaptive          after a uniform first pass, give each pixel samples in proportion\n"
     "                      to its estimated error; --spp is then the mean per pixel\n";
 static const char usage_after_sampler[] =

@@ -79,10 +79,13 @@ static double fit_slope(const struct rate_fit *r)
     return slope < 0.0 ? slope : -1.0;
 }
 
-/* Progress over the whole render: pass k of an expected `expected`, each reporting its own tiles'
- * fraction through report(). Never decreases. */
+/* Progress over the whole render, from the passes' own reports (their tiles' fraction): with a
+ * time budget alone, the share of it spent; otherwise pass k of an expected `expected`, 0 until a
+ * first pass has given an error to extrapolate from when the render runs to a target. Never
+ * decreases. */
 struct whole_progress {
     const struct render_settings *rs;
+    double t0;
     int done;             /* complete passes */
     double expected;      /* passes the render is expected to need, >= done + 1 */
     double last;
@@ -91,11 +94,18 @@ struct whole_progress {
 static int report(void *user, double fraction)
 {
     struct whole_progress *w = user;
-    double f = ((double)w->done + fraction) / w->expected;
+    const struct render_settings *rs = w->rs;
+    double f;
+    if (rs->time_budget > 0.0 && !(rs->target_error > 0.0))
+        f = (mc_seconds() - w->t0) / rs->time_budget;
+    else if (rs->target_error > 0.0 && w->done == 0)
+        f = 0.0;
+    else
+        f = ((double)w->done + fraction) / w->expected;
     if (f < w->last)
         f = w->last;
     w->last = f;
-    return w->rs->progress(w->rs->user, f < 1.0 ? f : 1.0);
+    return rs->progress(rs->user, f < 1.0 ? f : 1.0);
 }
 
 mcrt_status mc_render_passes(const struct render_settings *rs, mc_pass_fn pass_fn, void *ctx,
@@ -133,6 +143,7 @@ mcrt_status mc_render_passes(const struct render_settings *rs, mc_pass_fn pass_f
         return mc_fail(d, MCRT_ERR_NOMEM, "out of memory for a %dx%d film", f->width, f->height);
     }
     wp.rs = rs;
+    wp.t0 = t0;
     wp.done = 0;
     wp.expected = limited ? (double)rs->max_passes : (double)((rs->spp + pass.spp - 1) / pass.spp);
     wp.last = 0.0;
