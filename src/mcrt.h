@@ -163,17 +163,17 @@ typedef struct mcrt_stats {
     uint64_t rays;       /* rays traced (camera, bounce and shadow rays) */
     uint64_t nan_count;  /* samples that were NaN or infinite: counted, never added */
     /* The image's relative MSE estimated from its own samples: the mean over pixels and channels
-     * of Var(mean)/(A*B + 0.01), A and B the means of the two halves of a pixel's samples, each
-     * an independent randomization of the sampler. Var(mean) is unbiased for every sampler:
-     * (A - B)^2/4, or with the random sampler the pooled sample variance s^2/n. Measured against
-     * the truth in mcrt(1) and the README. NaN below 2 spp. */
+     * of Var(mean)/(max(A*B, m^2/2) + 0.01), A and B the means of the two halves of a pixel's
+     * samples (m theirs), each an independent randomization of the sampler. Var(mean) is
+     * unbiased for every sampler: (A - B)^2/4, or with the random sampler the pooled sample
+     * variance s^2/n. Measured against the truth in mcrt(1) and the README. NaN below 2 spp. */
     double est_relmse;
     double efficiency;   /* 1 / (est_relmse * seconds): higher is better at equal quality */
     int passes;          /* complete passes in the image (spp counts all of them) */
     int adaptive;        /* whether the render was adaptive (spp is then the mean per pixel) */
     int spp_min, spp_max; /* the fewest and most samples a pixel has (both spp when uniform) */
     /* How est_relmse falls with the samples taken, est ~ samples^relmse_slope (and so with
-     * time at a steady rate): fitted over the later half of the passes from 3 passes on, else
+     * time at a steady rate): fitted over the later half of the passes from 8 passes on, else
      * -1, the rate of a render continued by passes (each an independent randomization, whatever
      * the sampler). */
     double relmse_slope;

@@ -24,6 +24,8 @@ static void add_counts(struct render_result *out, const struct tile_result *res)
     out->nan_count += res->nan_count;
 }
 
+enum { MIN_FIT_PASSES = 8 };
+
 /* (log samples, log est_relmse) after each pass, for the rate at which the error falls with the
  * work done. Samples rather than seconds: the passes' times vary with the machine's load (1.4 to
  * 3 s for equal passes on a shared machine, measured), their sample counts do not. */
@@ -53,19 +55,20 @@ static int fit_add(struct rate_fit *r, double samples, double relmse)
     return 0;
 }
 
-/* The least-squares slope over the later half of the passes, from 3 passes on; before that,
- * and when it does not fall, -1. The first passes are left out: with few samples per pixel
- * the estimate's own bias (a rare bright sample raises a pixel's mean with its variance) is
- * largest, and it flattens the line: est·passes rose from 0.026 at pass 1 to 0.036 at 4 and
+/* The least-squares slope over the later half of the passes, from MIN_FIT_PASSES on; before
+ * that, and when it does not fall, -1. Fewer passes leave it to noise: a glossy scene's 4 passes
+ * gave -0.65, its 45 passes -1.00 to -1.02 over three seeds (measured). The first passes are
+ * left out: with few samples per pixel the estimate's own bias (a rare bright sample raises a
+ * pixel's mean with its variance) is largest, and it flattens the line: est·passes rose from 0.026 at pass 1 to 0.036 at 4 and
  * 0.039 at 14 on the Cornell box (passes of 4 spp), a slope of -0.89 over all 14 passes and
  * -0.94 over the later half. */
 static double fit_slope(const struct rate_fit *r)
 {
     double n = 0.0, sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0, den, slope;
     int i;
-    if (r->n < 3)
+    if (r->n < MIN_FIT_PASSES)
         return -1.0;
-    for (i = r->n / 2 > r->n - 3 ? r->n - 3 : r->n / 2; i < r->n; i++) {
+    for (i = r->n / 2; i < r->n; i++) {
         n += 1.0;
         sx += r->x[i];
         sy += r->y[i];

@@ -47,7 +47,7 @@ struct render_result {
     double seconds;
     uint64_t rays;
     uint64_t nan_count;               /* non-finite samples: counted, never added */
-    /* d log(est. relMSE) / d log(samples) over the passes, fitted from 3 passes on (passes.c);
+    /* d log(est. relMSE) / d log(samples) over the passes, fitted from 8 passes on (passes.c);
      * -1 before, the rate of a render continued by independent passes of one size. */
     double relmse_slope;
 };
