@@ -100,7 +100,7 @@ typedef struct mcrt_options {
     int spp;                /* samples per pixel; 0 = the scene's */
     int threads;            /* worker threads; 0 = all cores */
     uint64_t seed;          /* the image is a function of (scene, options, seed) only */
-    /* "path", "direct", "mis", "bsdf" or "light" (see mcrt_names); NULL = the scene's */
+    /* "path", "direct", "mis", "bsdf", "light" or "sppm" (see mcrt_names); NULL = the scene's */
     const char *integrator;
     /* Nonzero: the general code path, with every feature switched on, instead of the one built
      * for what the scene uses. The image is the same in expectation (for checks and benchmarks). */
