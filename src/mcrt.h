@@ -172,6 +172,11 @@ typedef struct mcrt_stats {
     int passes;          /* complete passes in the image (spp counts all of them) */
     int adaptive;        /* whether the render was adaptive (spp is then the mean per pixel) */
     int spp_min, spp_max; /* the fewest and most samples a pixel has (both spp when uniform) */
+    /* A biased integrator's (sppm's) est_relmse in its two parts, the same mean over pixels and
+     * channels of bias^2 and of the variance, each over (mean^2 + 0.01); est_relmse is their
+     * sum (with each pixel's total kept >= 0). NaN for the unbiased integrators, whose
+     * est_relmse is all variance, and below 2 passes. */
+    double est_relmse_bias2, est_relmse_variance;
 } mcrt_stats;
 /* Facts about the last run (all zero before one), into the first out_size bytes of out:
  * pass sizeof *out. */

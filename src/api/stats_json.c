@@ -51,5 +51,8 @@ void mc_stats_json(FILE *f, const mcrt_stats *st, uint64_t seed, const char *sce
             st->passes, st->adaptive ? "true" : "false", st->spp_min, st->spp_max);
     /* An error that cannot be estimated (1 spp) is null. */
     json_number(f, "est_relmse", st->est_relmse, ",\n");
-    json_number(f, "efficiency", st->efficiency, "\n}\n");
+    json_number(f, "efficiency", st->efficiency, ",\n");
+    /* A biased integrator's est_relmse in its parts; null for the others. */
+    json_number(f, "est_relmse_bias2", st->est_relmse_bias2, ",\n");
+    json_number(f, "est_relmse_variance", st->est_relmse_variance, "\n}\n");
 }

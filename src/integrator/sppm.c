@@ -710,18 +710,28 @@ static void update(struct sppm_state *st, const struct integrator_desc *cfg, int
     }
 }
 
-static double film_relmse(const struct sppm_state *st, int passes)
+/* The image's estimated relMSE (as mc_film_est_relmse would find it in the film), and its bias²
+ * part in *bias2 (NULL: not wanted); NaN below 2 passes. */
+static double film_relmse(const struct sppm_state *st, int passes, double *bias2)
 {
     size_t i;
-    double sum = 0.0;
+    double sum = 0.0, sb = 0.0;
     for (i = 0; i < st->npix; i++) {
-        double mse[3];
-        vec3 v = pixel_value(st, i, passes, mse, NULL);
+        double mse[3], b2[3], w[3];
+        vec3 v = pixel_value(st, i, passes, mse, b2);
+        int ch;
         if (mse[0] < 0.0)
-            return NAN;
-        sum += (mse[0] / ((double)v.x * v.x + 0.01) + mse[1] / ((double)v.y * v.y + 0.01)
-                + mse[2] / ((double)v.z * v.z + 0.01)) / 3.0;
+            return bias2 ? *bias2 = NAN : NAN;
+        w[0] = 1.0 / ((double)v.x * v.x + 0.01);
+        w[1] = 1.0 / ((double)v.y * v.y + 0.01);
+        w[2] = 1.0 / ((double)v.z * v.z + 0.01);
+        for (ch = 0; ch < 3; ch++) {
+            sum += mse[ch] * w[ch] / 3.0;
+            sb += b2[ch] * w[ch] / 3.0;
+        }
     }
+    if (bias2)
+        *bias2 = sb / (double)st->npix;
     return sum / (double)st->npix;
 }
 
@@ -742,7 +752,8 @@ static mcrt_status sppm_render(const struct integrator *self, void *state, const
     (void)self;
     (void)state;
     memset(&st, 0, sizeof st);
-    memset(out, 0, sizeof *out);
+    out->passes = 0;
+    out->samples = out->rays = out->nan_count = 0;
     st.width = f->width;
     st.height = f->height;
     st.x0 = rs->crop_x0;
@@ -824,7 +835,7 @@ static mcrt_status sppm_render(const struct integrator *self, void *state, const
         if (rs->time_budget > 0.0 && mc_seconds() - t0 + last_pass > rs->time_budget)
             break;
         if (rs->target_error > 0.0 && out->passes >= 2
-            && film_relmse(&st, out->passes) <= rs->target_error)
+            && film_relmse(&st, out->passes, NULL) <= rs->target_error)
             break;
     }
     if (out->passes > 0)
@@ -833,6 +844,10 @@ static mcrt_status sppm_render(const struct integrator *self, void *state, const
             vec3 v = pixel_value(&st, i, out->passes, mse, NULL);
             film_put(&f->pixels[i], v, mse);
         }
+    if (out->passes >= 2) {
+        double total = film_relmse(&st, out->passes, &out->est_relmse_bias2);
+        out->est_relmse_variance = total - out->est_relmse_bias2;
+    }
     if (status == MCRT_OK && rs->progress)
         rs->progress(rs->user, 1.0);
     out->samples = (uint64_t)out->passes * st.npix;

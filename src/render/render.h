@@ -45,6 +45,9 @@ struct render_result {
     double seconds;
     uint64_t rays;
     uint64_t nan_count;               /* non-finite samples: counted, never added */
+    /* A biased integrator's estimate of the image's relMSE in two parts (mcrt_stats); left NaN
+     * (as the caller sets them) by the others. */
+    double est_relmse_bias2, est_relmse_variance;
 };
 
 /* The radiance arriving along camera ray r, the whole of a per-ray integrator: with the

@@ -254,6 +254,100 @@ done:
     free(d);
 }
 
+/* ---- statistics, budgets, progress and cancellation ---- */
+
+struct prog {
+    double last;
+    int calls, decreasing, stop_after;
+};
+
+static int on_progress(void *user, double done)
+{
+    struct prog *p = user;
+    p->decreasing += done < p->last;
+    p->last = done;
+    return ++p->calls == p->stop_after;
+}
+
+static mcrt_render *run(const char *text, int spp, double budget, double target, struct prog *p,
+                        mcrt_status *st, mcrt_stats *stats)
+{
+    mcrt_scene *s = mcrt_scene_new();
+    mcrt_render *r = NULL;
+    mcrt_options o;
+    *st = MCRT_ERR_INVALID;
+    if (s && mcrt_scene_load_string(s, text, strlen(text), "test") == MCRT_OK) {
+        mcrt_options_init(&o);
+        o.spp = spp;
+        o.integrator = "sppm";
+        o.time_budget = budget;
+        o.target_error = target;
+        o.progress = p ? on_progress : NULL;
+        o.user = p;
+        r = mcrt_render_new(s, &o);
+        if (r) {
+            *st = mcrt_render_run(r);
+            mcrt_render_stats(r, stats, sizeof *stats);
+        }
+    }
+    mcrt_scene_free(s);
+    return r;
+}
+
+#define ENCLOSURE                                                                              \
+    INSIDE_CAMERA "material grey { diffuse 0.8 }\n"                                            \
+                  "sphere { radius 1  material grey  emit 0.5  flip }\nintegrator { photons 3000 }\n"
+
+static void test_stats_and_control(void)
+{
+    mcrt_stats st;
+    mcrt_status status;
+    struct prog p = {0.0, 0, 0, 0};
+    mcrt_render *r = run(ENCLOSURE, 16, 0.0, 0.0, &p, &status, &st);
+    T_CHECK(status == MCRT_OK && st.passes == 16, "16 passes: status %d, %d passes", status,
+            st.passes);
+    T_NEAR(st.est_relmse_bias2 + st.est_relmse_variance, st.est_relmse, 1e-6 * st.est_relmse,
+           "the error's two parts add up to est_relmse");
+    T_CHECK(st.est_relmse > 0.0 && st.est_relmse_variance > 0.0, "an error estimate (%g, %g)",
+            st.est_relmse, st.est_relmse_variance);
+    T_CHECK(p.calls > 0 && p.decreasing == 0 && p.last == 1.0,
+            "progress: %d calls, %d decreasing, last %g", p.calls, p.decreasing, p.last);
+    mcrt_render_free(r);
+    /* Cancelled from the progress callback: MCRT_ERR_CANCELLED, the complete passes kept. */
+    p.calls = p.decreasing = 0;
+    p.last = 0.0;
+    p.stop_after = 5;
+    r = run(ENCLOSURE, 64, 0.0, 0.0, &p, &status, &st);
+    T_CHECK(status == MCRT_ERR_CANCELLED && st.passes < 64, "cancelled: status %d, %d passes",
+            status, st.passes);
+    mcrt_render_free(r);
+    /* A target error stops the passes once the estimate reaches it. */
+    r = run(ENCLOSURE, 1, 0.0, 1e-4, NULL, &status, &st);
+    T_NOTE("target 1e-4: %d passes, est relMSE %.3g", st.passes, st.est_relmse);
+    T_CHECK(status == MCRT_OK && st.est_relmse <= 1e-4 && st.passes >= 2 && st.passes < 100000,
+            "target error: %d passes, est %g", st.passes, st.est_relmse);
+    mcrt_render_free(r);
+    /* A time budget of 0.3 s ends the render (whatever the machine's load, it must end, with
+     * at least one pass). */
+    r = run(ENCLOSURE, 1, 0.3, 0.0, NULL, &status, &st);
+    T_NOTE("time 0.3 s: %d passes in %.2f s", st.passes, st.seconds);
+    T_CHECK(status == MCRT_OK && st.passes >= 1, "time budget: %d passes", st.passes);
+    mcrt_render_free(r);
+    {
+        /* The path tracer has no parts. */
+        struct t_render_opts o;
+        int w, h;
+        float *px;
+        memset(&o, 0, sizeof o);
+        o.spp = 4;
+        o.integrator = "path";
+        px = t_render(ENCLOSURE, &o, &w, &h, &st);
+        T_CHECK(px && isnan(st.est_relmse_bias2) && isnan(st.est_relmse_variance),
+                "path: no bias and variance parts");
+        free(px);
+    }
+}
+
 /* ---- against the path tracer ---- */
 
 /* Load a scene file with its film replaced by a w × h one (and `extra` appended). */
@@ -427,6 +521,7 @@ int main(void)
     test_grid();
     test_closed_forms();
     test_determinism();
+    test_stats_and_control();
     test_consistency();
     test_agreement();
     return t_done();
