@@ -7,7 +7,7 @@
 #   make check      the tests under AddressSanitizer + UndefinedBehaviorSanitizer (build-san/)
 #   make tsan       a multi-threaded render of every scene under ThreadSanitizer (build-tsan/)
 #   make fuzz       libFuzzer (clang) on the scene parser and the OBJ reader, FUZZ_TIME s each (build-fuzz/)
-#   make bench      BVH and path-tracer throughput (not a test)
+#   make bench      BVH, path-tracer and photon-mapping throughput (not a test)
 #   make ref        regenerate the POV-Ray references in ref/ (needs povray; not part of make test)
 #   make install    PREFIX=/usr/local, DESTDIR honoured
 #   V=1             show full commands
@@ -215,9 +215,10 @@ ifneq ($(wildcard /usr/include/embree3/rtcore.h),)
 $(O)/tests/bench: CFLAGS += -DMCRT_HAVE_EMBREE
 $(O)/tests/bench: LDLIBS += -lembree3
 endif
-bench: all $(O)/tests/bench $(O)/tests/bench_render
+bench: all $(O)/tests/bench $(O)/tests/bench_render $(O)/tests/bench_sppm
 	$(O)/tests/bench
 	$(O)/tests/bench_render
+	$(O)/tests/bench_sppm
 
 # Convergence plots (relMSE against seconds, three samplers) for every scene, into $(O)/plots:
 # mcrt converge, gnuplot. Several minutes: each reference is a 256 spp render. Not a test.
