@@ -348,6 +348,101 @@ static void test_stats_and_control(void)
     }
 }
 
+/* ---- stiff cases ---- */
+
+/* The caustic box (glass and mirror spheres, a small light) with every length times `scale` and
+ * moved by `offset` along (1 1 1). Its light hangs 0.1 below the ceiling (not cornell-spheres'
+ * 0.01, which is about one float ulp at 1e5: there the light and the ceiling overlap and the path
+ * tracer's image changes too). Radiance does not change with the units, and the default
+ * radius follows the scene's size, so the images agree with the unit box's. */
+static void caustic_box(char *buf, size_t size, double scale, double offset)
+{
+    const double k = scale, o = offset;
+#define P3(x, y, z) (x) * k + o, (y) * k + o, (z) * k + o
+#define V3(x, y, z) (x) * k, (y) * k, (z) * k
+    snprintf(buf, size,
+             "film { width 24 height 24 spp 4 }\n"
+             "camera { eye %.9g %.9g %.9g  look %.9g %.9g %.9g  fov 40 }\n"
+             "material white { diffuse 0.75 }\nmaterial mirror { mirror 0.95 }\n"
+             "material glass { glass ior 1.5 }\n"
+             "quad { corner %.9g %.9g %.9g  edge1 %.9g %.9g %.9g  edge2 %.9g %.9g %.9g  material white }\n"
+             "quad { corner %.9g %.9g %.9g  edge1 %.9g %.9g %.9g  edge2 %.9g %.9g %.9g  material white }\n"
+             "quad { corner %.9g %.9g %.9g  edge1 %.9g %.9g %.9g  edge2 %.9g %.9g %.9g  material white }\n"
+             "quad { corner %.9g %.9g %.9g  edge1 %.9g %.9g %.9g  edge2 %.9g %.9g %.9g  emit 16 14 11 }\n"
+             "sphere { center %.9g %.9g %.9g  radius %.9g  material mirror }\n"
+             "sphere { center %.9g %.9g %.9g  radius %.9g  material glass }\n"
+             "integrator { photons 4000 }\n",
+             P3(0, 1, 3.9), P3(0, 1, 0), P3(-1, 0, 1), V3(2, 0, 0), V3(0, 0, -2), P3(-1, 2, -1),
+             V3(2, 0, 0), V3(0, 0, 2), P3(-1, 0, -1), V3(2, 0, 0), V3(0, 2, 0), P3(-0.25, 1.9, -0.25),
+             V3(0.5, 0, 0), V3(0, 0, 0.5), P3(-0.45, 0.38, -0.35), 0.38 * k, P3(0.45, 0.38, 0.3),
+             0.38 * k);
+#undef P3
+#undef V3
+}
+
+static void test_stiff(void)
+{
+    static const double cases[][2] = {{1e-3, 0.0}, {1e3, 0.0}, {1.0, 1e5}};
+    char text[2048];
+    double base;
+    int i;
+    mcrt_stats st;
+    struct t_render_opts o;
+    int w, h;
+    float *px;
+    caustic_box(text, sizeof text, 1.0, 0.0);
+    base = image_mean(text, 16, 3, 2);
+    for (i = 0; i < 3; i++) {
+        double m;
+        caustic_box(text, sizeof text, cases[i][0], cases[i][1]);
+        m = image_mean(text, 16, 3, 2);
+        T_NOTE("caustic box x %g, moved %g: image mean %.5f (unit box %.5f)", cases[i][0],
+               cases[i][1], m, base);
+        /* The same random numbers on a scaled copy: only rounding differs, which changes a few
+         * paths; the image means measured 0.03% apart scaled and 0.7% moved (whose float
+         * positions lose 17 bits); 3% is outside that, and a radius that did not follow the
+         * scale (0.36 in a box 0.002 wide, or 1e-4 in one 2000 wide) would be far off. */
+        T_CHECK(isfinite(m) && fabs(m - base) < 0.03 * base, "scaled %g moved %g: %g vs %g",
+                cases[i][0], cases[i][1], m, base);
+    }
+    /* A tiny, bright light (radius 1e-3, the same power as a radius 0.1 light of emission 10):
+     * no NaN, a finite image. */
+    memset(&o, 0, sizeof o);
+    o.spp = 8;
+    o.integrator = "sppm";
+    px = t_render("film { width 24 height 24 }\ncamera { eye 0 1 3.9  look 0 1 0 }\n"
+                  "quad { corner -1 0 1  edge1 2 0 0  edge2 0 0 -2 }\n"
+                  "quad { corner -1 0 -1  edge1 2 0 0  edge2 0 2 0 }\n"
+                  "sphere { center 0 1.5 0  radius 0.001  emit 1e5 }\n"
+                  "material glass { glass }\nsphere { center 0.3 0.4 0.2  radius 0.3  material glass }\n",
+                  &o, &w, &h, &st);
+    T_CHECK(px && st.nan_count == 0, "tiny bright light: %s, %llu NaN", px ? "rendered" : "failed",
+            px ? (unsigned long long)st.nan_count : 0ULL);
+    if (px) {
+        size_t k, bad = 0;
+        for (k = 0; k < (size_t)w * (size_t)h * 3; k++)
+            bad += !isfinite(px[k]) || px[k] < 0.0f;
+        T_CHECK(bad == 0, "tiny bright light: %zu pixels not finite and >= 0", bad);
+    }
+    free(px);
+    /* A white furnace (environment 1) with a white diffuse sphere beside a glass one: every
+     * pixel is 1 (energy is conserved everywhere; the glass is lossless). */
+    closed_form("white furnace with a glass sphere",
+                "film { width 24 height 24 }\ncamera { eye 0 0 4  look 0 0 0  fov 50 }\n"
+                "environment { radiance 1 }\nmaterial white { diffuse 1 }\n"
+                "material glass { glass ior 1.5 }\n"
+                "sphere { center -0.6 0 0  radius 0.5  material white }\n"
+                "sphere { center 0.6 0 0  radius 0.5  material glass }\n"
+                "integrator { photons 3000 }\n",
+                32, 1.0);
+    /* An enclosure of albedo 0.99: L = Le/(1 − 0.99) = 50 for Le = 0.5; paths of ~100 bounces. */
+    closed_form("enclosure of albedo 0.99",
+                INSIDE_CAMERA "material grey { diffuse 0.99 }\n"
+                              "sphere { radius 1  material grey  emit 0.5  flip }\n"
+                              "integrator { photons 2000  radius 0.15 }\n",
+                16, 0.5 / (1.0 - 0.99));
+}
+
 /* ---- against the path tracer ---- */
 
 /* Load a scene file with its film replaced by a w × h one (and `extra` appended). */
@@ -522,6 +617,7 @@ int main(void)
     test_closed_forms();
     test_determinism();
     test_stats_and_control();
+    test_stiff();
     test_consistency();
     test_agreement();
     return t_done();
