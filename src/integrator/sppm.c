@@ -294,6 +294,8 @@ static void camera_pixel(const struct pass_ctx *c, struct tile_worker *w, int x,
                 : mc_camera_ray(&c->cam, off.x, off.y);
     if (c->motion)
         mc_camera_at_time(&c->cam, &r, c->time);
+    if (c->rs->aov) /* first-hit layers: each pass's camera ray, as a per-ray render's samples */
+        mc_aov_record(&c->rs->aov->pixels[i], s, &r);
     prev_p = r.o;
     for (;;) {
         struct hit h;

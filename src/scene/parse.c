@@ -631,7 +631,7 @@ static const struct key integrator_keys[] = {
     {"strategy", V_CHOICE, 0, 0, NULL, strategy_names, NULL},
     {"photons", V_INT, 1, 1 << 30, NULL, NULL, NULL},
     {"radius", V_REAL, 0, INFINITY, "must be positive", NULL, NULL},
-    {"alpha", V_REAL, 0, 1, "must be between 0 and 1", NULL, NULL},
+    {"alpha", V_REAL, 0, 1, "must be between 0 and 1, both excluded", NULL, NULL},
 };
 
 static void finish_integrator(struct parser *p, struct block *b)
