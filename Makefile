@@ -8,6 +8,8 @@
 #   make tsan       a multi-threaded render of every scene under ThreadSanitizer (build-tsan/)
 #   make fuzz       libFuzzer (clang) on the scene parser and the OBJ reader, FUZZ_TIME s each (build-fuzz/)
 #   make bench      BVH, path-tracer and photon-mapping throughput (not a test)
+#   make bench-error every sampler's error estimate against the truth on every scene, and the
+#                   predicted time to an error against the time taken (minutes; not a test)
 #   make ref        regenerate the POV-Ray references in ref/ (needs povray; not part of make test)
 #   make install    PREFIX=/usr/local, DESTDIR honoured
 #   V=1             show full commands
@@ -73,7 +75,7 @@ UNIT_BIN := $(UNIT_SRC:tests/unit/%.c=$(O)/tests/%) $(BVH_VARIANTS:%=$(O)/tests/
 TOOL_SRC := $(wildcard tests/tools/*.c)
 TOOL_BIN := $(TOOL_SRC:tests/tools/%.c=$(O)/tests/%)
 
-.PHONY: all run test test-build check tsan fuzz bench install uninstall clean setup ref plots
+.PHONY: all run test test-build check tsan fuzz bench bench-error install uninstall clean setup ref plots
 all: $(O)/mcrt $(O)/libmcrt.a
 
 # $(O)/config.mk, the CONFIG above, is written while this Makefile is read, and only when its text
@@ -219,6 +221,12 @@ bench: all $(O)/tests/bench $(O)/tests/bench_render $(O)/tests/bench_sppm
 	$(O)/tests/bench
 	$(O)/tests/bench_render
 	$(O)/tests/bench_sppm
+
+# Estimated over true relMSE for every sampler at 16, 64 and 256 spp on every scene, and the
+# predicted time to a target error against the time taken (issue 14).
+bench-error: all
+	MCRT=$(O)/mcrt sh tests/tools/error_bench.sh
+	MCRT=$(O)/mcrt sh tests/tools/predict_bench.sh
 
 # Convergence plots (relMSE against seconds, three samplers) for every scene, into $(O)/plots:
 # mcrt converge, gnuplot. Several minutes: each reference is a 256 spp render. Not a test.

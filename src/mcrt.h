@@ -163,10 +163,10 @@ typedef struct mcrt_stats {
     uint64_t rays;       /* rays traced (camera, bounce and shadow rays) */
     uint64_t nan_count;  /* samples that were NaN or infinite: counted, never added */
     /* The image's relative MSE estimated from its own samples: the mean over pixels and channels
-     * of Var(mean)/(mean^2 + 0.01), Var(mean) = s^2/n from each pixel's sample variance. With
-     * the independent "random" sampler it measured 0.83 to 1.03 times the true value at 64 spp
-     * and 0.6 to 1 at 16 spp (rare bright paths raise a pixel's mean with its variance). The
-     * stratified and sobol samplers make it an overestimate. NaN below 2 spp. */
+     * of Var(mean)/(A*B + 0.01), A and B the means of the two halves of a pixel's samples, each
+     * an independent randomization of the sampler. Var(mean) is unbiased for every sampler:
+     * (A - B)^2/4, or with the random sampler the pooled sample variance s^2/n. Measured against
+     * the truth in mcrt(1) and the README. NaN below 2 spp. */
     double est_relmse;
     double efficiency;   /* 1 / (est_relmse * seconds): higher is better at equal quality */
     int passes;          /* complete passes in the image (spp counts all of them) */
@@ -177,10 +177,22 @@ typedef struct mcrt_stats {
      * sum (with each pixel's total kept >= 0). NaN for the unbiased integrators, whose
      * est_relmse is all variance, and below 2 passes. */
     double est_relmse_bias2, est_relmse_variance;
+    /* How est_relmse falls with the samples taken, est ~ samples^relmse_slope (and so with
+     * time at a steady rate): fitted over the later half of the passes from 3 passes on, else
+     * -1, the rate of a render continued by passes (each an independent randomization, whatever
+     * the sampler). */
+    double relmse_slope;
+    /* The seconds a render like this one would need for a relMSE of 1e-2, 1e-3 and 1e-4, from
+     * est_relmse, seconds and relmse_slope (NaN when est_relmse is). */
+    double seconds_to_relmse[3];
 } mcrt_stats;
 /* Facts about the last run (all zero before one), into the first out_size bytes of out:
  * pass sizeof *out. */
 void mcrt_render_stats(const mcrt_render *r, mcrt_stats *out, size_t out_size);
+/* The seconds a render like the one st describes would need to reach this relMSE, its time
+ * growing with its samples: st->seconds times (relmse / st->est_relmse)^(1 / st->relmse_slope);
+ * NaN when st has no estimate. */
+double mcrt_seconds_to_relmse(const mcrt_stats *st, double relmse);
 /* Write the last run's statistics and seed as a JSON object (the keys of mcrt(1)'s --stats), with
  * the labels scene and image (NULL: null), in the same all-or-nothing way as mcrt_render_save. */
 mcrt_status mcrt_render_save_stats(mcrt_render *r, const char *path, const char *scene,

@@ -130,7 +130,7 @@ if [ "$rc" -eq 0 ] && head -c 14 "$tmp/t.pfm" | cmp -s - "$tmp/header" &&
 else
     fail "PFM" "status $rc, $(head -c 300 "$tmp/err"), size $(wc -c <"$tmp/t.pfm" 2>/dev/null)"
 fi
-if [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -qE '^t\.pfm: 16x12, 4 spp, [0-9]+ threads?, [0-9.]+ s, [0-9.]+ Mrays/s, 0 NaN samples, est\. relMSE [0-9.e+-]+, efficiency [0-9.e+-]+$' "$tmp/err" &&
+if [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -qE '^t\.pfm: 16x12, 4 spp, [0-9]+ threads?, [0-9.]+ s, [0-9.]+ Mrays/s, 0 NaN samples, est\. relMSE [0-9.e+-]+ \([0-9e+-]+ in [0-9.e+-]+ s\), efficiency [0-9.e+-]+$' "$tmp/err" &&
     ! grep -q "$(printf '\r')" "$tmp/err"; then
     ok "summary line on stderr, no progress bar when stderr is not a terminal"
 else

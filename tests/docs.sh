@@ -137,7 +137,7 @@ fields=$(awk '/^typedef struct mcrt_[a-z]+ \{/ { on = 1; next }
         if (/\(\*/) { s = $0; sub(/.*\(\*/, "", s); sub(/\).*/, "", s); print s; next }
         if (!/;/) next
         s = $0; sub(/;.*/, "", s); n = split(s, a, ",")
-        for (i = 1; i <= n; i++) { k = split(a[i], b, /[ \t*]+/); print b[k] }
+        for (i = 1; i <= n; i++) { k = split(a[i], b, /[ \t*]+/); sub(/\[.*/, "", b[k]); print b[k] }
     }' src/mcrt.h)
 # shellcheck disable=SC2086
 check_words "libmcrt.3 describes every field of mcrt_options and mcrt_stats" "$body3" $fields

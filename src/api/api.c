@@ -2,6 +2,7 @@
  * Everything here is a thin layer over the modules; nothing prints and nothing exits. */
 #include "mcrt.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -286,7 +287,7 @@ static int first_hit_aovs(const char *list)
 {
     int i;
     for (i = 0; list && i < AOV_COUNT; i++)
-        if (i != AOV_VARIANCE && has_aov(list, mc_aov_names[i]))
+        if (!mc_aov_from_film((enum aov_kind)i) && has_aov(list, mc_aov_names[i]))
             return 1;
     return 0;
 }
@@ -339,6 +340,7 @@ static mcrt_status settings(const mcrt_render *r, struct render_settings *rs,
     rs->spp = o->spp ? o->spp : s->film.spp;
     rs->threads = o->threads ? o->threads : default_threads();
     rs->seed = o->seed;
+    rs->pass = 0;
     rs->integrator = s->integrator;
     rs->features = o->all_features ? FEATURE_ALL : mc_scene_features(s);
     rs->progress = o->progress;
@@ -368,6 +370,13 @@ static mcrt_status settings(const mcrt_render *r, struct render_settings *rs,
     return check_aovs(o->aovs, d);
 }
 
+double mcrt_seconds_to_relmse(const mcrt_stats *st, double relmse)
+{
+    if (!st || !(st->est_relmse > 0.0) || !(relmse > 0.0) || !(st->relmse_slope < 0.0))
+        return NAN;
+    return st->seconds * pow(relmse / st->est_relmse, 1.0 / st->relmse_slope);
+}
+
 mcrt_status mcrt_render_run(mcrt_render *r)
 {
     struct render_settings rs;
@@ -377,6 +386,7 @@ mcrt_status mcrt_render_run(mcrt_render *r)
     void *state = NULL;
     mcrt_status st;
     uint64_t lo, hi;
+    int i;
     size_t n;
     int w, h;
     if (!r)
@@ -398,6 +408,9 @@ mcrt_status mcrt_render_run(mcrt_render *r)
     if (mc_film_init(&r->film, w, h) != 0 || !(r->rgb = mc_malloc(n * 3 * sizeof *r->rgb))
         || (first_hit_aovs(r->opt.aovs) && mc_aov_init(&r->aov, w, h) != 0))
         return mc_fail(&r->err, MCRT_ERR_NOMEM, "out of memory for a %dx%d image", w, h);
+    /* The random sampler's samples are independent: its pooled sample variance is unbiased and
+     * measured more accurate than the halves' (film.h). */
+    r->film.pooled = rs.sampler == SAMPLER_RANDOM;
     rs.aov = r->aov.pixels ? &r->aov : NULL;
     rs.pixel_spp = NULL;
     mc_atomic_store(&r->cancel, 0);
@@ -430,6 +443,9 @@ mcrt_status mcrt_render_run(mcrt_render *r)
     r->stats.efficiency = 1.0 / (r->stats.est_relmse * res.seconds);
     r->stats.est_relmse_bias2 = res.est_relmse_bias2;
     r->stats.est_relmse_variance = res.est_relmse_variance;
+    r->stats.relmse_slope = res.relmse_slope;
+    for (i = 0; i < 3; i++)
+        r->stats.seconds_to_relmse[i] = mcrt_seconds_to_relmse(&r->stats, pow(10.0, -2.0 - i));
     if (st == MCRT_ERR_CANCELLED)
         mc_fail(&r->err, st, "render cancelled after %d complete pass%s", res.passes,
                 res.passes == 1 ? "" : "es");
@@ -445,13 +461,13 @@ const float *mcrt_render_pixels(const mcrt_render *r, int *width, int *height)
     return r ? r->rgb : NULL;
 }
 
-/* The image and the layers named in opt.aovs, in the order of mc_aov_names; the variance is
- * computed here, as only saving needs it. */
+/* The image and the layers named in opt.aovs, in the order of mc_aov_names; the film's layers are
+ * computed here, as only saving needs them. The halves are two layers, A and B. */
 static mcrt_status save_layers(mcrt_render *r, const char *path)
 {
-    struct image_layer layers[1 + AOV_COUNT];
+    struct image_layer layers[2 + AOV_COUNT];
     size_t npix = (size_t)r->film.width * (size_t)r->film.height;
-    float *buf = mc_malloc(npix * 3 * AOV_COUNT * sizeof *buf);
+    float *buf = mc_malloc(npix * 3 * (AOV_COUNT + 1) * sizeof *buf), *rgb = buf;
     int i, n = 1;
     mcrt_status st;
     if (!buf)
@@ -459,15 +475,24 @@ static mcrt_status save_layers(mcrt_render *r, const char *path)
     layers[0].name = NULL;
     layers[0].rgb = r->rgb;
     for (i = 0; i < AOV_COUNT; i++) {
-        float *rgb = buf + (size_t)i * npix * 3;
         if (!has_aov(r->opt.aovs, mc_aov_names[i]))
             continue;
-        if (i == AOV_VARIANCE)
+        if (i == AOV_HALVES) {
+            mc_film_resolve_half(&r->film, 0, rgb);
+            layers[n].name = "A";
+            layers[n++].rgb = rgb;
+            rgb += npix * 3;
+            mc_film_resolve_half(&r->film, 1, rgb);
+            layers[n].name = "B";
+        } else if (i == AOV_VARIANCE) {
             mc_film_variance(&r->film, rgb);
-        else
+            layers[n].name = mc_aov_names[i];
+        } else {
             mc_aov_resolve(&r->aov, (enum aov_kind)i, rgb);
-        layers[n].name = mc_aov_names[i];
+            layers[n].name = mc_aov_names[i];
+        }
         layers[n++].rgb = rgb;
+        rgb += npix * 3;
     }
     st = mc_image_write_layers(path, layers, n, r->film.width, r->film.height, &r->err);
     free(buf);

@@ -37,6 +37,7 @@ static void json_number(FILE *f, const char *key, double value, const char *end)
 void mc_stats_json(FILE *f, const mcrt_stats *st, uint64_t seed, const char *scene,
                    const char *image)
 {
+    int i;
     fputs("{\n", f);
     json_string(f, "scene", scene);
     json_string(f, "image", image);
@@ -54,5 +55,16 @@ void mc_stats_json(FILE *f, const mcrt_stats *st, uint64_t seed, const char *sce
     json_number(f, "efficiency", st->efficiency, ",\n");
     /* A biased integrator's est_relmse in its parts; null for the others. */
     json_number(f, "est_relmse_bias2", st->est_relmse_bias2, ",\n");
-    json_number(f, "est_relmse_variance", st->est_relmse_variance, "\n}\n");
+    json_number(f, "est_relmse_variance", st->est_relmse_variance, ",\n");
+    json_number(f, "relmse_slope", st->relmse_slope, ",\n");
+    /* The seconds to a relMSE of 1e-2, 1e-3, 1e-4 (mcrt_seconds_to_relmse). */
+    fputs("  \"seconds_to_relmse\": {", f);
+    for (i = 0; i < 3; i++) {
+        fprintf(f, "%s\"1e-%d\": ", i ? ", " : "", i + 2);
+        if (isfinite(st->seconds_to_relmse[i]))
+            fprintf(f, "%.6g", st->seconds_to_relmse[i]);
+        else
+            fputs("null", f);
+    }
+    fputs("}\n}\n", f);
 }

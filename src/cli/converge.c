@@ -18,7 +18,8 @@ static const char usage[] =
     "usage: mcrt converge [options] SCENE\n"
     "Render SCENE at a ladder of budgets, each with a fresh seed, and write DIR/NAME-converge.csv\n"
     "(estimator, sampler, spp, seconds, MSE, relMSE, estimated relMSE) and a log-log plot of\n"
-    "relMSE against seconds, DIR/NAME-converge.png (with gnuplot, if installed).\n"
+    "relMSE against seconds, the true one beside the renders' own estimate (dashed),\n"
+    "DIR/NAME-converge.png (with gnuplot, if installed).\n"
     "\n"
     "options:\n"
     "  --ref FILE          the reference image (default: a render at 16 times the largest\n"
@@ -152,7 +153,9 @@ static void rung_options(const struct converge *c, int v, int i, mcrt_options *o
         o->sampler = c->values[v];
 }
 
-/* A gnuplot script drawing one curve per variant from the CSV. */
+/* A gnuplot script drawing two curves per variant from the CSV, in one colour: the true relMSE
+ * (solid, points) and the render's own estimate of it (dashed), so that a reader sees at a
+ * glance whether the render's error bar can be trusted. */
 static int write_plot(const struct converge *c, const char *csv, const char *gp, const char *png)
 {
     FILE *f = fopen(gp, "w");
@@ -168,9 +171,11 @@ static int write_plot(const struct converge *c, const char *csv, const char *gp,
         char pat[80] = ",";
         if (c->key)
             snprintf(pat, sizeof pat, "%s%s,", c->key[0] == 'i' ? "^" : ",", c->values[v]);
+        const char *name = c->key ? c->values[v] : "render";
         fprintf(f, "%s'< grep -v -e ^# -e ^estimator %s | grep %s' using 4:6 with linespoints "
-                   "title '%s'",
-                v ? ", \\\n     " : "", csv, pat, c->key ? c->values[v] : "render");
+                   "lc %d dt 1 title '%s', \\\n     '' using 4:7 with lines lc %d dt 2 "
+                   "title '%s, estimated'",
+                v ? ", \\\n     " : "", csv, pat, v + 1, name, v + 1, name);
     }
     fprintf(f, "\n");
     return fclose(f) == 0;

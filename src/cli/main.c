@@ -2,6 +2,7 @@
  * image and optional JSON statistics. A thin client of the public API (mcrt.h) and nothing else. */
 #include <errno.h>
 #include <inttypes.h>
+#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -411,7 +412,7 @@ static int render(const struct render_args *a, const char *output)
     struct progress prog;
     mcrt_status status;
     int code = STATUS_FAIL;
-    char passes[96] = "";
+    char passes[96] = "", to_goal[64] = "";
 
     if (!scene) {
         fprintf(stderr, "mcrt: out of memory\n");
@@ -483,14 +484,26 @@ static int render(const struct render_args *a, const char *output)
     if (st.adaptive)
         snprintf(passes + strlen(passes), sizeof passes - strlen(passes), " (%d to %d spp)",
                  st.spp_min, st.spp_max);
+    /* The time to the next power of ten below the estimated error. */
+    if (st.est_relmse > 0.0) {
+        double goal = pow(10.0, floor(log10(st.est_relmse)));
+        char took[32];
+        goal = goal < st.est_relmse ? goal : goal / 10.0;
+        double t = mcrt_seconds_to_relmse(&st, goal);
+        if (t < 60.0)
+            snprintf(took, sizeof took, "%.2g s", t);
+        else
+            format_time(took, sizeof took, t);
+        snprintf(to_goal, sizeof to_goal, " (%.0e in %s)", goal, took);
+    }
     if (!a->quiet)
         fprintf(stderr,
                 "%s: %dx%d, %d spp, %d thread%s, %.*f s, %.2f Mrays/s, %" PRIu64 " NaN samples, "
-                "est. relMSE %.3g, efficiency %.3g%s\n",
+                "est. relMSE %.3g%s, efficiency %.3g%s\n",
                 output, st.width, st.height, st.spp, st.threads, st.threads == 1 ? "" : "s",
                 st.seconds < 10.0 ? 2 : 1, st.seconds,
                 st.seconds > 0.0 ? (double)st.rays / st.seconds * 1e-6 : 0.0, st.nan_count,
-                st.est_relmse, st.efficiency, passes);
+                st.est_relmse, to_goal, st.efficiency, passes);
     code = STATUS_OK;
 done:
     mcrt_render_free(r);

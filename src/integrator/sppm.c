@@ -639,17 +639,18 @@ static vec3 pixel_value(const struct sppm_state *st, size_t i, int passes, doubl
     return v3((float)v[0], (float)v[1], (float)v[2]);
 }
 
-/* The film pixel of an SPPM estimate: the one place SPPM writes a film. Two samples v ± √mse
- * give the film the mean v and the variance of the mean mse, which its error estimate reads;
- * without an error estimate, one sample. */
+/* The film pixel of an SPPM estimate: the one place SPPM writes a film. One sample v ∓ √mse in
+ * each half gives the film the mean v and, whether it reads the halves ((A − B)²/4) or the pooled
+ * sample variance (2·mse over 2 samples), the variance of the mean mse; without an error
+ * estimate, one sample in half 0. */
 static void film_put(struct film_pixel *fp, vec3 v, const double *mse)
 {
     if (mse[0] >= 0.0) {
         vec3 e = v3((float)sqrt(mse[0]), (float)sqrt(mse[1]), (float)sqrt(mse[2]));
-        mc_film_add(fp, v3_sub(v, e));
-        mc_film_add(fp, v3_add(v, e));
+        mc_film_add(&fp->half[0], v3_sub(v, e));
+        mc_film_add(&fp->half[1], v3_add(v, e));
     } else {
-        mc_film_add(fp, v);
+        mc_film_add(&fp->half[0], v);
     }
 }
 
@@ -724,9 +725,12 @@ static double film_relmse(const struct sppm_state *st, int passes, double *bias2
         int ch;
         if (mse[0] < 0.0)
             return bias2 ? *bias2 = NAN : NAN;
-        w[0] = 1.0 / ((double)v.x * v.x + 0.01);
-        w[1] = 1.0 / ((double)v.y * v.y + 0.01);
-        w[2] = 1.0 / ((double)v.z * v.z + 0.01);
+        /* The film's denominator for these two samples (film_put): the product of its half
+         * means, (v − e)(v + e), plus ε, so that the parts add up to its est_relmse. */
+        for (ch = 0; ch < 3; ch++) {
+            float e = (float)sqrt(mse[ch]), m = ch == 0 ? v.x : ch == 1 ? v.y : v.z;
+            w[ch] = 1.0 / ((double)(m - e) * (double)(m + e) + MC_RELMSE_EPS);
+        }
         for (ch = 0; ch < 3; ch++) {
             sum += mse[ch] * w[ch] / 3.0;
             sb += b2[ch] * w[ch] / 3.0;
@@ -756,6 +760,10 @@ static mcrt_status sppm_render(const struct integrator *self, void *state, const
     memset(&st, 0, sizeof st);
     out->passes = 0;
     out->samples = out->rays = out->nan_count = 0;
+    /* How the estimated relMSE falls with passes: N^-2/3 at α = 2/3 (Knaus and Zwicker 2011),
+     * N^-min(α, 2−2α) in general; the theory's rate, not a fit. */
+    out->relmse_slope = rs->integrator.alpha < 2.0f / 3.0f ? -rs->integrator.alpha
+                                                           : -(2.0 - 2.0 * rs->integrator.alpha);
     st.width = f->width;
     st.height = f->height;
     st.x0 = rs->crop_x0;

@@ -8,9 +8,6 @@
 
 #include "core/alloc.h"
 
-/* The ε of the relative MSE, Var(mean)/(mean² + ε), as in mc_film_est_relmse. */
-#define RELMSE_EPS 0.01
-
 int mc_adaptive_init(struct adaptive *a, size_t pixels)
 {
     a->pixels = pixels;
@@ -38,16 +35,17 @@ int mc_adaptive_pass_spp(int spp)
     return pass >= 8 ? pass : spp < 8 ? spp : 8;
 }
 
-/* The error weight of one pixel (its square root, w_i below): Σ_c s_c²/(m_c² + ε), s² the
- * sample variance and m the mean; -1 when it has fewer than 2 samples (no estimate). */
-static double pixel_weight(const struct film_pixel *p)
+/* The error weight of one pixel (its square root, w_i below): Σ_c σ_c²/(μ_c² + ε), σ² = n·Var(m)
+ * the per-sample variance (film.h: pooled, or from the halves) and μ² as mc_film_mean_squared;
+ * -1 when the pixel has no estimate. */
+static double pixel_weight(const struct film *f, const struct film_pixel *p)
 {
-    double n = (double)p->count, sum = 0.0;
+    double v[3], n = (double)mc_film_count(p), sum = 0.0;
     int c;
-    if (p->count < 2)
+    if (!mc_film_pixel_variance(f, p, v))
         return -1.0;
     for (c = 0; c < 3; c++)
-        sum += p->m2[c] / (n - 1.0) / (p->mean[c] * p->mean[c] + RELMSE_EPS);
+        sum += n * v[c] / (mc_film_mean_squared(p, c) + MC_RELMSE_EPS);
     return sqrt(sum);
 }
 
@@ -57,7 +55,7 @@ static double deficit(const struct adaptive *a, const struct film *f, double s)
     double sum = 0.0;
     size_t i;
     for (i = 0; i < a->pixels; i++) {
-        double d = s * a->weight[i] - (double)f->pixels[i].count;
+        double d = s * a->weight[i] - (double)mc_film_count(&f->pixels[i]);
         sum += d > 0.0 ? d : 0.0;
     }
     return sum;
@@ -83,7 +81,7 @@ static double deficit(const struct adaptive *a, const struct film *f, double s)
  * while the water-filled share (1 − α) keeps the image within 1/(1 − α) of the estimated optimum.
  * α = 0.2: at most 25% above the optimum, at worst 5× uniform's variance in a pixel whose
  * estimate is wrong. A prior on the variance was the alternative; the mixture needs no scale.
- * Pixels without an estimate (fewer than 2 samples) take the mean weight.
+ * Pixels without an estimate (too few samples) take the mean weight.
  *
  * Bias. The counts depend on the samples already taken, so a pixel's mean is a ratio with a
  * random denominator and is biased by O(1/n) (Kirk and Arvo 1991, "Unbiased sampling techniques
@@ -98,8 +96,8 @@ uint64_t mc_adaptive_allocate(struct adaptive *a, const struct film *f, uint64_t
     uint64_t given = 0;
     size_t i;
     for (i = 0; i < a->pixels; i++) {
-        a->weight[i] = pixel_weight(&f->pixels[i]);
-        nsum += (double)f->pixels[i].count;
+        a->weight[i] = pixel_weight(f, &f->pixels[i]);
+        nsum += (double)mc_film_count(&f->pixels[i]);
         if (a->weight[i] >= 0.0) {
             wsum += a->weight[i];
             known += 1.0;
@@ -130,7 +128,7 @@ uint64_t mc_adaptive_allocate(struct adaptive *a, const struct film *f, uint64_t
     /* Real-valued counts rounded by their running sum, so that they add up to the budget exactly
      * and each pixel's count is within 1 of its share. */
     for (i = 0; i < a->pixels; i++) {
-        double d = hi * a->weight[i] - (double)f->pixels[i].count;
+        double d = hi * a->weight[i] - (double)mc_film_count(&f->pixels[i]);
         double share = uniform + (d > 0.0 ? d * scale : 0.0);
         double before = floor(prefix + 0.5);
         int n;
@@ -149,12 +147,11 @@ uint64_t mc_adaptive_allocate(struct adaptive *a, const struct film *f, uint64_t
 void mc_adaptive_count_range(const struct film *f, uint64_t *min, uint64_t *max)
 {
     size_t i, n = (size_t)f->width * (size_t)f->height;
-    *min = n ? f->pixels[0].count : 0;
+    *min = n ? mc_film_count(&f->pixels[0]) : 0;
     *max = *min;
     for (i = 1; i < n; i++) {
-        if (f->pixels[i].count < *min)
-            *min = f->pixels[i].count;
-        if (f->pixels[i].count > *max)
-            *max = f->pixels[i].count;
+        uint64_t k = mc_film_count(&f->pixels[i]);
+        *min = k < *min ? k : *min;
+        *max = k > *max ? k : *max;
     }
 }

@@ -1,4 +1,5 @@
-/* film.c: film allocation, resolve and the error estimates from the Welford sums (see film.h). */
+/* film.c: film allocation, resolve and the error estimates from the halves' Welford sums (see
+ * film.h). */
 #include "render/film.h"
 
 #include <math.h>
@@ -6,12 +7,14 @@
 #include <string.h>
 
 #include "core/alloc.h"
+#include "core/rng.h"
 
 int mc_film_init(struct film *f, int width, int height)
 {
     size_t n = (size_t)width * (size_t)height;
     f->width = width;
     f->height = height;
+    f->pooled = 0;
     f->pixels = NULL;
     if (width <= 0 || height <= 0 || n / (size_t)width != (size_t)height)
         return -1;
@@ -25,26 +28,37 @@ void mc_film_free(struct film *f)
     f->pixels = NULL;
 }
 
+uint64_t mc_film_half_seed(uint64_t seed, int h)
+{
+    /* The constant separates the halves' seeds from the passes' and the user's ("half"). */
+    return h == 0 ? seed : mc_hash3(seed, (uint64_t)h, 0x68616c66ULL);
+}
+
+/* a += b (Chan, Golub and LeVeque 1979). */
+static void merge_sums(struct film_sums *a, const struct film_sums *b)
+{
+    double na = (double)a->count, nb = (double)b->count, nt = na + nb;
+    int c;
+    if (b->count == 0)
+        return;
+    if (a->count == 0) {
+        *a = *b;
+        return;
+    }
+    for (c = 0; c < 3; c++) {
+        double delta = b->mean[c] - a->mean[c];
+        a->mean[c] += delta * nb / nt;
+        a->m2[c] += b->m2[c] + delta * delta * na * nb / nt;
+    }
+    a->count += b->count;
+}
+
 void mc_film_merge(struct film *dst, const struct film *src)
 {
     size_t i, n = (size_t)dst->width * (size_t)dst->height;
-    int c;
     for (i = 0; i < n; i++) {
-        struct film_pixel *a = &dst->pixels[i];
-        const struct film_pixel *b = &src->pixels[i];
-        double na = (double)a->count, nb = (double)b->count, nt = na + nb;
-        if (b->count == 0)
-            continue;
-        if (a->count == 0) {
-            *a = *b;
-            continue;
-        }
-        for (c = 0; c < 3; c++) {
-            double delta = b->mean[c] - a->mean[c];
-            a->mean[c] += delta * nb / nt;
-            a->m2[c] += b->m2[c] + delta * delta * na * nb / nt;
-        }
-        a->count += b->count;
+        merge_sums(&dst->pixels[i].half[0], &src->pixels[i].half[0]);
+        merge_sums(&dst->pixels[i].half[1], &src->pixels[i].half[1]);
     }
 }
 
@@ -53,31 +67,75 @@ void mc_film_clear(struct film *f)
     memset(f->pixels, 0, (size_t)f->width * (size_t)f->height * sizeof *f->pixels);
 }
 
+struct film_sums mc_film_pixel_sums(const struct film_pixel *p)
+{
+    struct film_sums s = p->half[0];
+    merge_sums(&s, &p->half[1]);
+    return s;
+}
+
+int mc_film_pixel_variance(const struct film *f, const struct film_pixel *p, double var[3])
+{
+    double na = (double)p->half[0].count, nb = (double)p->half[1].count, n = na + nb;
+    int c;
+    if (f->pooled) {
+        /* s²/n, s² = M2/(n − 1) the unbiased sample variance of independent samples. */
+        struct film_sums s = mc_film_pixel_sums(p);
+        if (s.count < 2)
+            return 0;
+        for (c = 0; c < 3; c++)
+            var[c] = s.m2[c] / (n * (n - 1.0));
+        return 1;
+    }
+    if (p->half[0].count == 0 || p->half[1].count == 0)
+        return 0;
+    /* (A − B)²·nA·nB/n² (film.h): (A − B)²/4 for equal halves. */
+    for (c = 0; c < 3; c++) {
+        double d = p->half[0].mean[c] - p->half[1].mean[c];
+        var[c] = d * d * na * nb / (n * n);
+    }
+    return 1;
+}
+
+double mc_film_mean_squared(const struct film_pixel *p, int c)
+{
+    struct film_sums s;
+    if (p->half[0].count && p->half[1].count)
+        return p->half[0].mean[c] * p->half[1].mean[c];
+    s = mc_film_pixel_sums(p);
+    return s.mean[c] * s.mean[c];
+}
+
 void mc_film_resolve(const struct film *f, float *rgb)
 {
     size_t i, n = (size_t)f->width * (size_t)f->height;
+    int c;
     for (i = 0; i < n; i++) {
-        rgb[3 * i + 0] = (float)f->pixels[i].mean[0];
-        rgb[3 * i + 1] = (float)f->pixels[i].mean[1];
-        rgb[3 * i + 2] = (float)f->pixels[i].mean[2];
+        struct film_sums s = mc_film_pixel_sums(&f->pixels[i]);
+        for (c = 0; c < 3; c++)
+            rgb[3 * i + c] = (float)s.mean[c];
     }
 }
 
-/* s²/n for one channel of a pixel: M2/(n(n − 1)). */
-static double mean_variance(const struct film_pixel *p, int c)
+void mc_film_resolve_half(const struct film *f, int h, float *rgb)
 {
-    double n = (double)p->count;
-    return p->m2[c] / (n * (n - 1.0));
+    size_t i, n = (size_t)f->width * (size_t)f->height;
+    int c;
+    for (i = 0; i < n; i++)
+        for (c = 0; c < 3; c++)
+            rgb[3 * i + c] = (float)f->pixels[i].half[h].mean[c];
 }
 
 void mc_film_variance(const struct film *f, float *var)
 {
     size_t i, n = (size_t)f->width * (size_t)f->height;
     int c;
-    for (i = 0; i < n; i++)
+    for (i = 0; i < n; i++) {
+        double v[3];
+        int known = mc_film_pixel_variance(f, &f->pixels[i], v);
         for (c = 0; c < 3; c++)
-            var[3 * i + c] =
-                f->pixels[i].count >= 2 ? (float)mean_variance(&f->pixels[i], c) : 0.0f;
+            var[3 * i + c] = known ? (float)v[c] : 0.0f;
+    }
 }
 
 double mc_film_est_relmse(const struct film *f)
@@ -86,11 +144,11 @@ double mc_film_est_relmse(const struct film *f)
     double sum = 0.0;
     int c;
     for (i = 0; i < n; i++) {
-        const struct film_pixel *p = &f->pixels[i];
-        if (p->count < 2)
+        double v[3];
+        if (!mc_film_pixel_variance(f, &f->pixels[i], v))
             continue;
         for (c = 0; c < 3; c++)
-            sum += mean_variance(p, c) / (p->mean[c] * p->mean[c] + 0.01);
+            sum += v[c] / (mc_film_mean_squared(&f->pixels[i], c) + MC_RELMSE_EPS);
         used++;
     }
     return used ? sum / (3.0 * (double)used) : NAN;

@@ -30,29 +30,37 @@ static inline void render_pixel(struct job *j, struct tile_worker *w, int x, int
     struct film_pixel *px = &j->film->pixels[(size_t)(y - j->y0) * (size_t)j->film->width
                                              + (size_t)(x - j->x0)];
     struct sampler smp;
-    int i, spp = rs->pixel_spp ? rs->pixel_spp[px - j->film->pixels] : rs->spp;
-    mc_sampler_pixel(&smp, rs->sampler, rs->seed, x, y, spp);
-    for (i = 0; i < spp; i++) {
-        vec2 off;
-        struct ray r;
-        vec3 L;
-        mc_sampler_start(&smp, (uint32_t)i);
-        /* Filter importance sampling (Ernst et al. 2006): film points distributed as the filter
-         * around the pixel centre, every sample of weight 1. */
-        off = mc_filter_sample(j->scene->film.filter, mc_sampler_2d(&smp));
-        off.x += (float)x + 0.5f;
-        off.y += (float)y + 0.5f;
-        r = F & FEATURE_LENS ? mc_camera_ray_lens(&j->camera, off.x, off.y, mc_sampler_2d(&smp))
-                             : mc_camera_ray(&j->camera, off.x, off.y);
-        if (F & FEATURE_MOTION)
-            mc_camera_at_time(&j->camera, &r, mc_camera_time(&j->camera, mc_sampler_1d(&smp)));
-        if (rs->aov)
-            mc_aov_record(&rs->aov->pixels[px - j->film->pixels], j->scene, &r);
-        L = j->Li(j->scene, &rs->integrator, r, &smp, &w->rays);
-        if (v3_is_finite(L))
-            mc_film_add(px, L);
-        else
-            w->nans++;
+    int h, i, spp = rs->pixel_spp ? rs->pixel_spp[px - j->film->pixels] : rs->spp;
+    int split = mc_film_half_split(spp, rs->pass);
+    /* Each half of the pixel (film.h) is a complete set of the sampler, of its own size and
+     * seed, so that the two half means are independent. */
+    for (h = 0; h < 2; h++) {
+        int n = h == 0 ? split : spp - split;
+        mc_sampler_pixel(&smp, rs->sampler, mc_film_half_seed(rs->seed, h), x, y, n);
+        for (i = 0; i < n; i++) {
+            vec2 off;
+            struct ray r;
+            vec3 L;
+            mc_sampler_start(&smp, (uint32_t)i);
+            /* Filter importance sampling (Ernst et al. 2006): film points distributed as the
+             * filter around the pixel centre, every sample of weight 1. */
+            off = mc_filter_sample(j->scene->film.filter, mc_sampler_2d(&smp));
+            off.x += (float)x + 0.5f;
+            off.y += (float)y + 0.5f;
+            r = F & FEATURE_LENS
+                    ? mc_camera_ray_lens(&j->camera, off.x, off.y, mc_sampler_2d(&smp))
+                    : mc_camera_ray(&j->camera, off.x, off.y);
+            if (F & FEATURE_MOTION)
+                mc_camera_at_time(&j->camera, &r,
+                                  mc_camera_time(&j->camera, mc_sampler_1d(&smp)));
+            if (rs->aov)
+                mc_aov_record(&rs->aov->pixels[px - j->film->pixels], j->scene, &r);
+            L = j->Li(j->scene, &rs->integrator, r, &smp, &w->rays);
+            if (v3_is_finite(L))
+                mc_film_add(&px->half[h], L);
+            else
+                w->nans++;
+        }
     }
 }
 

@@ -16,6 +16,7 @@ struct render_settings {
     int spp;
     int threads;                      /* >= 1 */
     uint64_t seed;
+    int pass;                         /* this pass's index: which half a pixel's odd sample takes */
     struct integrator_desc integrator; /* the parameters, as the integrator's prepare left them */
     unsigned features;                /* scene/features.h: what the render is built for */
     int (*progress)(void *user, double done); /* serialised; nonzero return cancels */
@@ -27,7 +28,8 @@ struct render_settings {
     struct aov_film *aov;             /* film-sized first-hit data to record, or NULL */
     enum sampler_kind sampler;        /* the film's, unless the options override it */
     /* Film-sized samples of each pixel (render/adaptive.h), in place of spp everywhere; NULL:
-     * spp each. A pixel's n samples are a complete n-sample set of the sampler. */
+     * spp each. A pixel's n samples are split into its two halves (film.h), each a
+     * complete set of the sampler of its own size and seed. */
     const int *pixel_spp;
     /* Progressive passes (render/passes.h). */
     double time_budget;               /* seconds; 0 = none */
@@ -48,6 +50,9 @@ struct render_result {
     /* A biased integrator's estimate of the image's relMSE in two parts (mcrt_stats); left NaN
      * (as the caller sets them) by the others. */
     double est_relmse_bias2, est_relmse_variance;
+    /* d log(est. relMSE) / d log(samples) over the passes, fitted from 3 passes on (passes.c);
+     * -1 before, the rate of a render continued by independent passes of one size. */
+    double relmse_slope;
 };
 
 /* The radiance arriving along camera ray r, the whole of a per-ray integrator: with the
@@ -58,7 +63,7 @@ typedef vec3 (*mc_radiance_fn)(const struct scene *s, const struct integrator_de
 
 /* One pass of a per-ray integrator: rs->spp samples (or rs->pixel_spp) of each pixel of film f
  * (already sized, rs's crop of the image), each a camera ray given to Li, on the tile pool
- * (tiles.h). Each pixel's samples depend only on (seed, pixel, sample index), so the film is
+ * (tiles.h). Each pixel's samples depend only on (seed, pass, pixel, sample index), so the film is
  * bit-identical for any thread count. Returns MCRT_ERR_CANCELLED when stopped early (f then
  * holds the finished tiles). */
 mcrt_status mc_render_rays(const struct scene *s, const struct render_settings *rs,

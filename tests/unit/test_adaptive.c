@@ -36,14 +36,16 @@ static const char scene_text[] =
 
 /* ---- the allocation on synthetic films ---- */
 
-/* Give pixel p n samples of per-channel mean mu and sample variance var (as the Welford sums). */
+/* Give pixel p n samples of per-channel mean mu and sample variance var (as the Welford sums of
+ * its first half; the films here are pooled, as the random sampler's). */
 static void set_pixel(struct film_pixel *p, uint64_t n, double mu, double var)
 {
     int c;
-    p->count = n;
+    p->half[0].count = n;
+    p->half[1].count = 0;
     for (c = 0; c < 3; c++) {
-        p->mean[c] = mu;
-        p->m2[c] = var * (double)(n - 1);
+        p->half[0].mean[c] = mu;
+        p->half[0].m2[c] = var * (double)(n - 1);
     }
 }
 
@@ -65,6 +67,7 @@ static void test_allocation(void)
     double u = MC_ADAPTIVE_UNIFORM * B, ratio;
     int i, floor_ok = 1, uniform_ok = 1;
     T_CHECK(mc_film_init(&f, N, 1) == 0 && mc_adaptive_init(&a, N) == 0, "init");
+    f.pooled = 1;
     /* Pixels 0-39 with error weight w = σ/sqrt(μ² + ε) = 1 (μ = 0, σ² = 0.01·3/3 per channel:
      * w² = Σ_c σ²/(μ² + ε) = 3), 40-79 with w four times that, 80-99 with no variance at all; 8
      * samples each. The budget (10 per pixel here) is large against those 8, so every pixel with
@@ -152,8 +155,10 @@ static int render(struct rig *g, struct film *f, uint64_t seed, int spp, int ada
     g->rs.seed = seed;
     g->rs.spp = spp;
     g->rs.threads = threads;
-    if (mc_film_init(f, g->s.film.width, g->s.film.height) != 0
-        || it->render(it, NULL, &g->s, &g->rs, f, &res, &d) != MCRT_OK) {
+    if (mc_film_init(f, g->s.film.width, g->s.film.height) != 0)
+        return -1;
+    f->pooled = g->rs.sampler == SAMPLER_RANDOM;
+    if (it->render(it, NULL, &g->s, &g->rs, f, &res, &d) != MCRT_OK) {
         printf("render: %s\n", d.msg);
         return -1;
     }
@@ -172,8 +177,8 @@ static double relmse(const struct film *f, const struct film *ref, int x0, int x
     for (y = 0; y < f->height; y++)
         for (x = x0; x < x1; x++)
             for (c = 0; c < 3; c++) {
-                double t = f->pixels[y * f->width + x].mean[c];
-                double r = ref->pixels[y * f->width + x].mean[c];
+                double t = mc_film_pixel_sums(&f->pixels[y * f->width + x]).mean[c];
+                double r = mc_film_pixel_sums(&ref->pixels[y * f->width + x]).mean[c];
                 sum += (t - r) * (t - r) / (r * r + 0.01);
             }
     return sum / (3.0 * f->height * (x1 - x0));
@@ -212,12 +217,14 @@ static void test_against_reference(struct rig *g)
      * of a room, which the sum accumulates. */
     for (y = 0; y < a.height; y++)
         for (x = 0; x < a.width; x++) {
-            const struct film_pixel *p = &a.pixels[y * a.width + x];
-            const struct film_pixel *q = &ref.pixels[y * a.width + x];
+            struct film_sums p = mc_film_pixel_sums(&a.pixels[y * a.width + x]);
+            struct film_sums q = mc_film_pixel_sums(&ref.pixels[y * a.width + x]);
+            double vp[3], vq[3];
+            mc_film_pixel_variance(&a, &a.pixels[y * a.width + x], vp);
+            mc_film_pixel_variance(&ref, &ref.pixels[y * a.width + x], vq);
             for (c = 0; c < 3; c++) {
-                sum_d[x >= half][c] += p->mean[c] - q->mean[c];
-                sum_v[x >= half][c] += p->m2[c] / ((double)p->count * (double)(p->count - 1))
-                                       + q->m2[c] / ((double)q->count * (double)(q->count - 1));
+                sum_d[x >= half][c] += p.mean[c] - q.mean[c];
+                sum_v[x >= half][c] += vp[c] + vq[c];
             }
         }
     for (k = 0; k < 2; k++)

@@ -26,9 +26,9 @@ int main(void)
     mcrt_render *r;
     mcrt_options o;
     mcrt_stats st;
-    struct image im = {0, 0, NULL}, var = {0, 0, NULL};
+    struct image im = {0, 0, NULL}, var = {0, 0, NULL}, ha = {0, 0, NULL}, hb = {0, 0, NULL};
     mc_diag d;
-    int ok, i;
+    int ok, i, halves_ok = 1;
     double est = 0.0;
 
     if (!mcrt_format_supported("exr")) {
@@ -43,7 +43,7 @@ int main(void)
     T_CHECK(mcrt_scene_load_string(s, scene_text, strlen(scene_text), NULL) == MCRT_OK, "%s",
             mcrt_scene_error(s));
     mcrt_options_init(&o);
-    o.aovs = "depth,albedo,normal,variance";
+    o.aovs = "depth,albedo,normal,variance,halves";
     r = mcrt_render_new(s, &o);
     T_CHECK(mcrt_render_run(r) == MCRT_OK && mcrt_render_save(r, path) == MCRT_OK, "%s",
             mcrt_render_error(r));
@@ -66,12 +66,20 @@ int main(void)
         ok = im.rgb[3 * i] >= 4.9999f && im.rgb[3 * i] < 5.478f && im.rgb[3 * i] == im.rgb[3 * i + 2];
     T_CHECK(ok, "depth between 5 and 5.477 (pixel %d)", i - 1);
     mc_image_free(&im);
-    /* The variance layer and the image give back the render's est_relmse (float rounding of the
-     * stored layers: relative 1e-6). */
+    /* The variance layer and the halves give back the render's est_relmse, Σ var/(A·B + 0.01)
+     * (float rounding of the stored layers: relative 1e-6), and the mean of the halves is the
+     * image (equal halves: 2 + 2 samples). */
     ok = mc_image_read_layer(path, "variance", &var, &d) == MCRT_OK &&
-         mc_image_read(path, &im, &d) == MCRT_OK;
-    for (i = 0; ok && i < 8 * 6 * 3; i++)
-        est += var.rgb[i] / ((double)im.rgb[i] * im.rgb[i] + 0.01);
+         mc_image_read_layer(path, "A", &ha, &d) == MCRT_OK &&
+         mc_image_read_layer(path, "B", &hb, &d) == MCRT_OK && mc_image_read(path, &im, &d) == MCRT_OK;
+    T_CHECK(ok, "the variance, A and B layers: %s", ok ? "" : d.msg);
+    for (i = 0; ok && i < 8 * 6 * 3; i++) {
+        est += var.rgb[i] / ((double)ha.rgb[i] * hb.rgb[i] + 0.01);
+        halves_ok &= fabsf(0.5f * (ha.rgb[i] + hb.rgb[i]) - im.rgb[i]) <= 1e-6f * im.rgb[i];
+    }
+    T_CHECK(halves_ok, "the image is the mean of the halves A and B");
+    mc_image_free(&ha);
+    mc_image_free(&hb);
     mcrt_render_stats(r, &st, sizeof st);
     T_NEAR(est / (8 * 6 * 3) / st.est_relmse, 1.0, 1e-5, "est_relmse from the layers");
     T_CHECK(st.est_relmse > 0.0, "the estimate is positive: %g", st.est_relmse);

@@ -167,20 +167,25 @@ static void test_sampler(void)
 }
 
 /* Welford in double: 10⁶ samples of 1e-3 accumulate to 1e-3 without drift, next to a pixel of
- * 1e4, and the variance of alternating values is exact. */
+ * 1e4, and the variance of alternating values is exact, with the samples spread over both halves
+ * and the halves combined (Chan et al.). */
 static void test_film(void)
 {
     struct film f;
+    struct film_sums a, b;
     int i;
     T_CHECK(mc_film_init(&f, 2, 1) == 0, "film");
     for (i = 0; i < 1000000; i++) {
-        mc_film_add(&f.pixels[0], v3s(1e-3f));
-        mc_film_add(&f.pixels[1], v3(1e4f, (i & 1) ? 1.0f : 3.0f, 0));
+        mc_film_add(&f.pixels[0].half[(i >> 1) & 1], v3s(1e-3f));
+        mc_film_add(&f.pixels[1].half[(i >> 1) & 1], v3(1e4f, (i & 1) ? 1.0f : 3.0f, 0));
     }
-    T_NEAR(f.pixels[0].mean[0], (double)1e-3f, 1e-15, "small pixel drifted");
-    T_NEAR(f.pixels[1].mean[0], 1e4, 1e-9, "large pixel");
-    T_NEAR(f.pixels[1].mean[1], 2.0, 1e-12, "alternating mean");
-    T_NEAR(f.pixels[1].m2[1] / (1e6 - 1), 1e6 / (1e6 - 1), 1e-9, "alternating sample variance");
+    a = mc_film_pixel_sums(&f.pixels[0]);
+    b = mc_film_pixel_sums(&f.pixels[1]);
+    T_CHECK(a.count == 1000000 && b.count == 1000000, "counts");
+    T_NEAR(a.mean[0], (double)1e-3f, 1e-15, "small pixel drifted");
+    T_NEAR(b.mean[0], 1e4, 1e-9, "large pixel");
+    T_NEAR(b.mean[1], 2.0, 1e-12, "alternating mean");
+    T_NEAR(b.m2[1] / (1e6 - 1), 1e6 / (1e6 - 1), 1e-9, "alternating sample variance");
     mc_film_free(&f);
 }
 
