@@ -725,11 +725,14 @@ static double film_relmse(const struct sppm_state *st, int passes, double *bias2
         int ch;
         if (mse[0] < 0.0)
             return bias2 ? *bias2 = NAN : NAN;
-        /* The film's denominator for these two samples (film_put): the product of its half
-         * means, (v − e)(v + e), plus ε, so that the parts add up to its est_relmse. */
-        for (ch = 0; ch < 3; ch++) {
-            float e = (float)sqrt(mse[ch]), m = ch == 0 ? v.x : ch == 1 ? v.y : v.z;
-            w[ch] = 1.0 / ((double)(m - e) * (double)(m + e) + MC_RELMSE_EPS);
+        /* The film's own denominator for what film_put writes (mc_film_mean_squared, plus
+         * ε), so that the parts add up to the film's est_relmse whatever it does. */
+        {
+            struct film_pixel tmp;
+            memset(&tmp, 0, sizeof tmp);
+            film_put(&tmp, v, mse);
+            for (ch = 0; ch < 3; ch++)
+                w[ch] = 1.0 / (mc_film_mean_squared(&tmp, ch) + MC_RELMSE_EPS);
         }
         for (ch = 0; ch < 3; ch++) {
             sum += mse[ch] * w[ch] / 3.0;
