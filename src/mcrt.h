@@ -100,7 +100,7 @@ typedef struct mcrt_options {
     int spp;                /* samples per pixel; 0 = the scene's */
     int threads;            /* worker threads; 0 = all cores */
     uint64_t seed;          /* the image is a function of (scene, options, seed) only */
-    /* "path", "direct", "mis", "bsdf" or "light" (see mcrt_names); NULL = the scene's */
+    /* "path", "direct", "mis", "bsdf", "light" or "sppm" (see mcrt_names); NULL = the scene's */
     const char *integrator;
     /* Nonzero: the general code path, with every feature switched on, instead of the one built
      * for what the scene uses. The image is the same in expectation (for checks and benchmarks). */
@@ -172,6 +172,11 @@ typedef struct mcrt_stats {
     int passes;          /* complete passes in the image (spp counts all of them) */
     int adaptive;        /* whether the render was adaptive (spp is then the mean per pixel) */
     int spp_min, spp_max; /* the fewest and most samples a pixel has (both spp when uniform) */
+    /* A biased integrator's (sppm's) est_relmse in its two parts, the same mean over pixels and
+     * channels of bias^2 and of the variance, each over (mean^2 + 0.01); est_relmse is their
+     * sum (with each pixel's total kept >= 0). NaN for the unbiased integrators, whose
+     * est_relmse is all variance, and below 2 passes. */
+    double est_relmse_bias2, est_relmse_variance;
     /* How est_relmse falls with the samples taken, est ~ samples^relmse_slope (and so with
      * time at a steady rate): fitted over the later half of the passes from 8 passes on, else
      * -1, the rate of a render continued by passes (each an independent randomization, whatever

@@ -89,7 +89,7 @@ expect "--seed -1" 2 "^mcrt: --seed: expected an integer from 0 to 1844674407370
     --seed -1 tiny.mcrt
 expect "--seed 2^64" 2 "^mcrt: --seed: expected an integer" --seed 18446744073709551616 tiny.mcrt
 expect "--seed 0x10" 2 "^mcrt: --seed: expected an integer" --seed 0x10 tiny.mcrt
-expect "--integrator foo" 2 "^mcrt: --integrator: expected path, direct, mis, bsdf or light, got 'foo'$" \
+expect "--integrator foo" 2 "^mcrt: --integrator: expected path, direct, mis, bsdf, light or sppm, got 'foo'$" \
     --integrator foo tiny.mcrt
 
 # ---- bad scenes: nothing is created or touched ----

@@ -421,6 +421,7 @@ mcrt_status mcrt_render_run(mcrt_render *r)
     rs.adaptive = r->opt.adaptive != 0;
     if (it->prepare && (st = it->prepare(it, s, &rs, &state, &r->err)) != MCRT_OK)
         return st;
+    res.est_relmse_bias2 = res.est_relmse_variance = NAN;
     st = it->render(it, state, s, &rs, &r->film, &res, &r->err);
     if (it->release)
         it->release(state);
@@ -440,6 +441,8 @@ mcrt_status mcrt_render_run(mcrt_render *r)
     r->stats.nan_count = res.nan_count;
     r->stats.est_relmse = mc_film_est_relmse(&r->film);
     r->stats.efficiency = 1.0 / (r->stats.est_relmse * res.seconds);
+    r->stats.est_relmse_bias2 = res.est_relmse_bias2;
+    r->stats.est_relmse_variance = res.est_relmse_variance;
     r->stats.relmse_slope = res.relmse_slope;
     for (i = 0; i < 3; i++)
         r->stats.seconds_to_relmse[i] = mcrt_seconds_to_relmse(&r->stats, pow(10.0, -2.0 - i));

@@ -53,6 +53,9 @@ void mc_stats_json(FILE *f, const mcrt_stats *st, uint64_t seed, const char *sce
     /* An error that cannot be estimated (1 spp) is null. */
     json_number(f, "est_relmse", st->est_relmse, ",\n");
     json_number(f, "efficiency", st->efficiency, ",\n");
+    /* A biased integrator's est_relmse in its parts; null for the others. */
+    json_number(f, "est_relmse_bias2", st->est_relmse_bias2, ",\n");
+    json_number(f, "est_relmse_variance", st->est_relmse_variance, ",\n");
     json_number(f, "relmse_slope", st->relmse_slope, ",\n");
     /* The seconds to a relMSE of 1e-2, 1e-3, 1e-4 (mcrt_seconds_to_relmse). */
     fputs("  \"seconds_to_relmse\": {", f);

@@ -26,8 +26,10 @@ static const char usage[] =
     "                      budget with another seed, written to DIR/NAME-ref.pfm)\n"
     "  --spp LIST          the ladder in samples per pixel, comma-separated (default: 1,4,16,64)\n"
     "  --times LIST        the ladder in seconds instead (progressive passes of 1 spp)\n"
-    "  --compare KEY=LIST  one curve per value: integrator=path,direct, the path tracer's\n"
-    "                      strategies integrator=mis,bsdf,light, or sampler=";
+    "  --compare KEY=LIST  one curve per value: integrator=path,direct, the unbiased and the\n"
+    "                      consistent estimator integrator=path,sppm (a ladder of passes for\n"
+    "                      sppm), the path tracer's strategies integrator=mis,bsdf,light,\n"
+    "                      or sampler=";
 /* The help after the sampler names. */
 static const char usage_tail[] =
     "\n"

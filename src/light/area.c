@@ -3,6 +3,7 @@
  * spheres by the cone they subtend (pbrt-v4, Sphere::Sample, after Shirley and Wang 1996). A
  * moving emitter is sampled in its time-0 frame (geom/motion.h). */
 #include "light/light_impl.h"
+#include "sample/warp.h"
 
 double mc_area_light_power(const struct light_scene *s, const struct light *l)
 {
@@ -136,6 +137,45 @@ float mc_area_light_pdf(const struct light_scene *s, const struct light *l, vec3
     if (!(cos_l > 0.0f))
         return 0.0f;
     return t * t / (cos_l * mc_prim_area(pr));
+}
+
+/* A point uniform by area (pdf 1/A) and a cosine-weighted direction about the normal of the side
+ * it leaves (a two-sided emitter picks the side with u_dir.x), so that every photon of a one-sided
+ * emitter carries π·A·Le (two-sided: 2π·A·Le), the light's power. */
+int mc_area_light_emission(const struct light_scene *s, const struct light *l, float time,
+                           vec2 u_pos, vec2 u_dir, struct light_emission *out)
+{
+    const struct prim *pr = &s->prims[l->prim];
+    struct rigid x;
+    vec3 n, local;
+    frame f;
+    float area = mc_prim_area(pr), sides = 1.0f;
+    out->p = mc_prim_sample_area(pr, u_pos, &n);
+    if (pr->flags & PRIM_TWO_SIDED) {
+        sides = 2.0f;
+        if (u_dir.x < 0.5f) {
+            u_dir.x *= 2.0f;
+        } else {
+            u_dir.x = 2.0f * u_dir.x - 1.0f;
+            n = v3_neg(n);
+        }
+        u_dir.x = fminf(u_dir.x, 0x1.fffffep-1f);
+    }
+    if (light_frame(s, pr, time, &x)) {
+        out->p = rigid_point(&x, out->p);
+        n = rigid_vector(&x, n);
+    }
+    f = frame_from_normal(n);
+    local = mc_warp_cosine_hemisphere(u_dir);
+    out->n = n;
+    out->d = v3_normalize(frame_to_world(&f, local));
+    out->Le = pr->emit;
+    out->pdf_pos = 1.0f / area;
+    out->pdf_dir = mc_warp_cosine_hemisphere_pdf(local.z) / sides;
+    if (!(out->pdf_dir > 0.0f) || !(area > 0.0f))
+        return 0;
+    out->weight = v3_scale(pr->emit, MC_PI * sides * area);
+    return 1;
 }
 
 vec3 mc_light_emitted(const struct prim *pr, const struct surface *sf)

@@ -30,6 +30,27 @@ float mc_environment_light_pdf(const struct light_scene *s, const struct light *
     return mc_warp_uniform_sphere_pdf();
 }
 
+/* A direction w toward the sky uniform on the sphere; the photon travels along d = −w from a point
+ * uniform on the disk of radius R centred at centre + R·w and normal to w, which lies outside the
+ * bounding sphere and covers the whole scene as seen along d. */
+int mc_environment_light_emission(const struct light_scene *s, const struct light *l, float time,
+                                  vec2 u_pos, vec2 u_dir, struct light_emission *out)
+{
+    vec3 w = mc_warp_uniform_sphere(u_dir);
+    vec2 q = mc_warp_concentric_disk(u_pos);
+    frame f = frame_from_normal(w);
+    float r = s->radius;
+    (void)time;
+    out->d = v3_neg(w);
+    out->n = out->d;
+    out->p = v3_add(v3_madd(s->center, w, r), frame_to_world(&f, v3(q.x * r, q.y * r, 0.0f)));
+    out->Le = l->intensity;
+    out->pdf_pos = 1.0f / (MC_PI * r * r);
+    out->pdf_dir = mc_warp_uniform_sphere_pdf();
+    out->weight = v3_scale(l->intensity, 1.0f / (out->pdf_pos * out->pdf_dir));
+    return isfinite(out->pdf_pos) && out->pdf_pos > 0.0f;
+}
+
 /* Default radiance 1: the white sky a scene without lights gets anyway. */
 static const struct block_param params[] = {
     {"radiance", PARAM_RGB, {1.0f, 1.0f, 1.0f}},

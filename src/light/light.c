@@ -39,3 +39,14 @@ float mc_light_pdf(const struct light_scene *s, const struct light *l, vec3 p, f
     }
     return 0.0f;
 }
+
+int mc_light_sample_emission(const struct light_scene *s, const struct light *l, float time,
+                             vec2 u_pos, vec2 u_dir, struct light_emission *out)
+{
+    switch (l->kind) {
+#define X(kind, name) case kind: return mc_##name##_light_emission(s, l, time, u_pos, u_dir, out);
+        MC_LIGHTS(X)
+#undef X
+    }
+    return 0;
+}

@@ -47,6 +47,7 @@ struct light_scene {
     const struct prim *prims;
     const struct motion *motions;
     float radius;
+    vec3 center;     /* the centre of that sphere: the environment's emission disk faces it */
 };
 
 /* A sample toward a light from a shading point. */
@@ -59,6 +60,29 @@ struct light_sample {
     float pdf;       /* solid-angle pdf of wi given this light; for a point light, 1 (delta) */
     int delta;       /* the light is a delta distribution (point light): no MIS */
 };
+
+/* A ray leaving a light, for tracing light paths (photons): pbrt-v4's Light::SampleLe. */
+struct light_emission {
+    vec3 p;          /* where it starts */
+    vec3 n;          /* area lights: the unit normal at p on the side d leaves; environment: d (the
+                      * normal of the disk it starts on); point lights: zero */
+    vec3 d;          /* unit direction of travel */
+    vec3 Le;         /* radiance leaving p along d; for a point light, its intensity (W/sr) */
+    float pdf_pos;   /* density of p per unit area (point light: 1, a delta) */
+    float pdf_dir;   /* density of d per unit solid angle, given p */
+    vec3 weight;     /* Le·|n·d| / (pdf_pos·pdf_dir) (point light: Le / pdf_dir): the flux the
+                      * ray carries, before dividing by the light's selection probability */
+};
+
+/* Sample a ray leaving l at scene time `time` (a moving emitter where it is then): u_pos chooses
+ * the point, u_dir the direction. Area lights: a point uniform by area, a cosine-weighted
+ * direction about the emitting side's normal (two-sided: either side, with probability ½ each,
+ * so pdf_dir = |cos θ|/(2π)); point lights: a uniform direction; the environment: a direction
+ * uniform on the sphere, starting on the disk of the bounding sphere's radius R that faces it
+ * from outside the sphere (pdf_pos = 1/(πR²); pbrt-v3 InfiniteAreaLight::Sample_Le). Returns 0
+ * when there is no ray (zero pdf). */
+int mc_light_sample_emission(const struct light_scene *s, const struct light *l, float time,
+                             vec2 u_pos, vec2 u_dir, struct light_emission *out);
 
 /* Scalar power of a light (mean over RGB channels), for selection. */
 double mc_light_power(const struct light_scene *s, const struct light *l);

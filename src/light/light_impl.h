@@ -12,6 +12,9 @@
                                  float time, vec2 u, struct light_sample *out);                \
     float mc_##name##_light_pdf(const struct light_scene *s, const struct light *l, vec3 p,     \
                                 float time, vec3 wi, float t, const struct surface *sf);       \
+    int mc_##name##_light_emission(const struct light_scene *s, const struct light *l,         \
+                                   float time, vec2 u_pos, vec2 u_dir,                         \
+                                   struct light_emission *out);                                \
     extern const struct light_desc mc_##name##_light;
 MC_LIGHTS(MC_LIGHT_DECLARE)
 #undef MC_LIGHT_DECLARE

@@ -1,6 +1,7 @@
 /* point.c: the isotropic point light of intensity I (W/sr): a delta distribution, reached only by
  * light sampling, its radiance at distance d following the inverse-square law I / d². */
 #include "light/light_impl.h"
+#include "sample/warp.h"
 
 double mc_point_light_power(const struct light_scene *s, const struct light *l)
 {
@@ -31,6 +32,21 @@ float mc_point_light_pdf(const struct light_scene *s, const struct light *l, vec
 {
     (void)s, (void)l, (void)p, (void)time, (void)wi, (void)t, (void)sf;
     return 0.0f;
+}
+
+/* Photons leave the point uniformly over the sphere: pdf 1/(4π), each carrying I·4π. */
+int mc_point_light_emission(const struct light_scene *s, const struct light *l, float time,
+                            vec2 u_pos, vec2 u_dir, struct light_emission *out)
+{
+    (void)s, (void)time, (void)u_pos;
+    out->p = l->position;
+    out->n = v3s(0.0f);
+    out->d = mc_warp_uniform_sphere(u_dir);
+    out->Le = l->intensity;
+    out->pdf_pos = 1.0f;
+    out->pdf_dir = mc_warp_uniform_sphere_pdf();
+    out->weight = v3_scale(l->intensity, 1.0f / out->pdf_dir);
+    return 1;
 }
 
 /* Defaults as pbrt's point light: at the origin, intensity 1. */

@@ -47,6 +47,9 @@ struct render_result {
     double seconds;
     uint64_t rays;
     uint64_t nan_count;               /* non-finite samples: counted, never added */
+    /* A biased integrator's estimate of the image's relMSE in two parts (mcrt_stats); left NaN
+     * (as the caller sets them) by the others. */
+    double est_relmse_bias2, est_relmse_variance;
     /* d log(est. relMSE) / d log(samples) over the passes, fitted from 8 passes on (passes.c);
      * -1 before, the rate of a render continued by independent passes of one size. */
     double relmse_slope;

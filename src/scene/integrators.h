@@ -17,6 +17,7 @@
     X(DIRECT, direct)     \
     X(MIS, mis)           \
     X(BSDF, bsdf)         \
-    X(LIGHT, light)
+    X(LIGHT, light)       \
+    X(SPPM, sppm)
 
 #endif

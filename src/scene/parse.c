@@ -621,13 +621,17 @@ static void finish_camera(struct parser *p, struct block *b)
              "'look'");
 }
 
-enum { INT_METHOD, INT_MAX_DEPTH, INT_RR_DEPTH, INT_LIGHT_SAMPLES, INT_STRATEGY };
+enum { INT_METHOD, INT_MAX_DEPTH, INT_RR_DEPTH, INT_LIGHT_SAMPLES, INT_STRATEGY, INT_PHOTONS,
+       INT_RADIUS, INT_ALPHA };
 static const struct key integrator_keys[] = {
     {"method", V_CHOICE, 0, 0, NULL, mc_integrator_names, NULL},
     {"max_depth", V_INT, 0, 65536, NULL, NULL, NULL},
     {"rr_depth", V_INT, 0, 65536, NULL, NULL, NULL},
     {"light_samples", V_INT, 1, 1024, NULL, NULL, NULL},
     {"strategy", V_CHOICE, 0, 0, NULL, strategy_names, NULL},
+    {"photons", V_INT, 1, 1 << 30, NULL, NULL, NULL},
+    {"radius", V_REAL, 0, INFINITY, "must be positive", NULL, NULL},
+    {"alpha", V_REAL, 0, 1, "must be between 0 and 1, both excluded", NULL, NULL},
 };
 
 static void finish_integrator(struct parser *p, struct block *b)
@@ -643,6 +647,12 @@ static void finish_integrator(struct parser *p, struct block *b)
         it->light_samples = (int)b->v[INT_LIGHT_SAMPLES].at[0].num;
     if (b->v[INT_STRATEGY].set)
         it->strategy = (enum strategy)b->v[INT_STRATEGY].choice;
+    if (b->v[INT_PHOTONS].set)
+        it->photons = (long)b->v[INT_PHOTONS].at[0].num;
+    if (b->v[INT_RADIUS].set)
+        it->radius = (float)b->v[INT_RADIUS].x[0];
+    if (b->v[INT_ALPHA].set)
+        it->alpha = (float)b->v[INT_ALPHA].x[0];
 }
 
 /* The material block's keys: first one per kind of the material table (materials.def), whose

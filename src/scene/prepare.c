@@ -62,12 +62,15 @@ static mcrt_status build_motion_bvh(struct scene *s, mc_diag *d)
 }
 
 /* Radius of a sphere bounding the scene, moving primitives over the whole shutter (1 when the
- * scene is empty): the environment's power is that of a disk of this radius (light.c). */
-static float scene_radius(const struct scene *s)
+ * scene is empty), and its centre (the origin then): the environment's power is that of a disk of
+ * this radius (light.c), and its photons start on such a disk. */
+static float scene_radius(const struct scene *s, vec3 *center)
 {
     struct aabb b = aabb_union(s->bvh.bounds, s->motion_bvh.bounds);
+    *center = v3s(0.0f);
     if (!(b.hi.x >= b.lo.x))
         return 1.0f;
+    *center = v3_scale(v3_add(b.lo, b.hi), 0.5f);
     return fmaxf(0.5f * v3_length(v3_sub(b.hi, b.lo)), 1e-6f);
 }
 
@@ -128,7 +131,7 @@ mcrt_status mc_scene_prepare(struct scene *s, mc_diag *d)
         return mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
     s->light_scene.prims = s->prims;
     s->light_scene.motions = s->motions;
-    s->light_scene.radius = scene_radius(s);
+    s->light_scene.radius = scene_radius(s, &s->light_scene.center);
     for (i = 0; i < s->light_count; i++)
         power[i] = s->lights[i].power = mc_light_power(&s->light_scene, &s->lights[i]);
     st = mc_alias_build(&s->light_select, power, s->light_count, d);

@@ -28,6 +28,9 @@ int mc_scene_init(struct scene *s)
     s->integrator.max_depth = -1;
     s->integrator.rr_depth = 5;
     s->integrator.light_samples = 1;
+    s->integrator.photons = 0;
+    s->integrator.radius = 0.0f;
+    s->integrator.alpha = 2.0f / 3.0f;
     s->camera.shutter[1] = 1.0f;
     s->env_light = -1;
     memset(&def, 0, sizeof def);

@@ -38,6 +38,11 @@ struct integrator_desc {
     int rr_depth;                    /* Russian roulette starts after this many bounces: 5 */
     int light_samples;               /* shadow rays per non-delta hit: 1 */
     enum strategy strategy;          /* mis */
+    /* Stochastic progressive photon mapping (integrator/sppm.c): */
+    long photons;                    /* photons per pass; 0 = the film's pixel count */
+    float radius;                    /* initial gather radius; 0 = 5 × the scene's bounding radius
+                                        / the film's larger side (Mitsuba's default) */
+    float alpha;                     /* the fraction of new photons kept: 2/3 */
 };
 
 struct scene {
