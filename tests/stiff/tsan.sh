@@ -1,6 +1,7 @@
 #!/bin/sh
 # tsan.sh: run by `make tsan` on a ThreadSanitizer build ($O/mcrt): renders every scene in scenes/
-# and tests/stiff/ with 4 threads (more threads than cores, so tiles interleave) at 2 spp, runs
+# and tests/stiff/ with 4 threads (more threads than cores, so tiles interleave) at 2 spp, and
+# the caustic scene with every integrator, runs
 # test_tiles (the progress callback), and fails on any ThreadSanitizer report or failed render.
 # Not part of `make test` (it needs its own build). Prints "ok ..." or "FAIL ...: why" per scene,
 # then "N passed, N failed".
@@ -16,6 +17,19 @@ for scene in scenes/*.mcrt tests/stiff/*.mcrt; do
         ok "$scene"
     else
         fail "$scene" "exit status $rc"
+        head -n 30 "$tmp/err"
+    fi
+done
+# Every integrator of the table on the caustic scene (photon mapping's chunks and gather are
+# threaded differently from the per-ray integrators' tiles).
+for integrator in $("$MCRT" --list integrator | cut -f1); do
+    "$MCRT" scenes/cornell-spheres.mcrt --integrator "$integrator" --spp 2 --threads 4 \
+        -o "$tmp/out.pfm" 2>"$tmp/err"
+    rc=$?
+    if [ "$rc" -eq 0 ] && ! grep -q "ThreadSanitizer" "$tmp/err"; then
+        ok "integrator $integrator"
+    else
+        fail "integrator $integrator" "exit status $rc"
         head -n 30 "$tmp/err"
     fi
 done
