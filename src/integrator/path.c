@@ -5,87 +5,7 @@
 
 #include <limits.h>
 
-#include "bsdf/bsdf.h"
-#include "scene/features.h"
-
-/* Veach's power heuristic with β = 2 for the strategy with pdf a against one with pdf b, each pdf
- * already multiplied by its number of samples (Veach 1997, eq. 9.13). */
-static float power_heuristic(float a, float b)
-{
-    float a2 = a * a, b2 = b * b;
-    if (isinf(a2))
-        return 1.0f;
-    return a2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
-}
-
-/* The side of the surface a direction leaves from, for offsetting ray origins. */
-static vec3 side_normal(vec3 ng, vec3 w) { return v3_dot(w, ng) >= 0.0f ? ng : v3_neg(ng); }
-
-/* Ray queries: a static scene asks the static BVH alone, and surfaces need no motion. F is a
- * constant in every instantiation below, so these branches are resolved at compile time. */
-static inline int trace(const struct scene *s, const struct ray *r, struct hit *h, unsigned F)
-{
-    return F & FEATURE_MOTION ? mc_scene_intersect(s, r, h) : mc_bvh_intersect(&s->bvh, s->prims, r, h);
-}
-static inline int occluded(const struct scene *s, const struct ray *r, unsigned F)
-{
-    return F & FEATURE_MOTION ? mc_scene_occluded(s, r) : mc_bvh_occluded(&s->bvh, s->prims, r);
-}
-static inline void surface(const struct scene *s, const struct ray *r, const struct hit *h,
-                           struct surface *sf, unsigned F)
-{
-    if (F & FEATURE_MOTION)
-        mc_scene_surface(s, r, h, sf);
-    else
-        mc_prim_surface(&s->prims[h->prim], s->normals, r, h, sf);
-}
-
-/* One shadow ray of next-event estimation: a light chosen by power, a point on it, weighted
- * against BSDF sampling when MIS is on. Returns the contribution before the path throughput. */
-static inline vec3 light_sample(const struct scene *s, const struct integrator_desc *cfg,
-                                const struct surface *sf, float time, const frame *fr,
-                                const struct bsdf *b, vec3 wo, struct sampler *smp,
-                                uint64_t *rays, int n, unsigned F)
-{
-    struct light_sample ls;
-    struct ray shadow;
-    float pmf, light_pdf, weight;
-    vec3 wi, f, target;
-    int li = mc_alias_sample(&s->light_select, mc_sampler_1d_double(smp), &pmf);
-    vec2 u = mc_sampler_2d(smp);
-    if (li < 0 || !mc_light_sample(&s->light_scene, &s->lights[li], sf->p, time, u, &ls)
-        || v3_is_zero(ls.L))
-        return v3s(0.0f);
-    wi = frame_to_local(fr, ls.wi);
-    f = v3_scale(mc_bsdf_eval(b, wo, wi, MC_RADIANCE), fabsf(wi.z));
-    if (v3_is_zero(f))
-        return v3s(0.0f);
-    shadow.o = ray_spawn(sf->p, side_normal(sf->ng, ls.wi), sf->err);
-    shadow.time = time;
-    if (isinf(ls.dist)) {
-        shadow.d = ls.wi;
-        shadow.tmax = INFINITY;
-    } else {
-        /* Aim at the light point moved off its own surface, so that the light itself never
-         * occludes the segment. */
-        target = v3_is_zero(ls.normal)
-                     ? ls.point
-                     : ray_spawn(ls.point, ls.normal, mc_prim_point_error(&s->prims[s->lights[li].prim]));
-        shadow.d = v3_sub(target, shadow.o);
-        shadow.tmax = v3_length(shadow.d);
-        if (!(shadow.tmax > 0.0f))
-            return v3s(0.0f);
-        shadow.d = v3_scale(shadow.d, 1.0f / shadow.tmax);
-    }
-    ++*rays;
-    if (occluded(s, &shadow, F))
-        return v3s(0.0f);
-    light_pdf = pmf * ls.pdf;
-    weight = !mc_features_need_mis(F) || ls.delta || cfg->strategy == STRATEGY_LIGHT
-                 ? 1.0f
-                 : power_heuristic((float)n * light_pdf, mc_bsdf_pdf(b, wo, wi));
-    return v3_scale(v3_mul(f, ls.L), weight / ((float)n * light_pdf));
-}
+#include "integrator/path_vertex.h"
 
 /* Next-event estimation at a non-delta surface: the mean of `light_samples` shadow rays. */
 static inline vec3 sample_direct(const struct scene *s, const struct integrator_desc *cfg,
@@ -96,7 +16,8 @@ static inline vec3 sample_direct(const struct scene *s, const struct integrator_
     vec3 L = v3s(0.0f);
     int i, n = F & FEATURE_LIGHT_SAMPLES ? cfg->light_samples : 1;
     for (i = 0; i < n; i++)
-        L = v3_add(L, light_sample(s, cfg, sf, time, fr, b, wo, smp, rays, n, F));
+        L = v3_add(L, light_sample(s, sf, time, fr, b, wo, smp, rays, n, F,
+                                   mc_features_need_mis(F) && cfg->strategy != STRATEGY_LIGHT));
     return L;
 }
 

@@ -38,10 +38,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bsdf/bsdf.h"
 #include "camera/camera.h"
 #include "core/alloc.h"
 #include "core/clock.h"
+#include "integrator/path_vertex.h"
 #include "integrator/point_grid.h"
 #include "sample/filter.h"
 #include "sample/sampler.h"
@@ -50,34 +50,6 @@
 /* Photons per chunk: the unit of work of the photon pass, and the unit its records are merged in. */
 #define SPPM_CHUNK 1024
 
-/* Veach's power heuristic, β = 2 (as path.c). */
-static float power_heuristic(float a, float b)
-{
-    float a2 = a * a, b2 = b * b;
-    if (isinf(a2))
-        return 1.0f;
-    return a2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
-}
-
-static vec3 side_normal(vec3 ng, vec3 w) { return v3_dot(w, ng) >= 0.0f ? ng : v3_neg(ng); }
-
-/* The scene's queries with motion when it moves (the general ones) or the static BVH's. */
-static int trace(const struct scene *s, const struct ray *r, struct hit *h, int motion)
-{
-    return motion ? mc_scene_intersect(s, r, h) : mc_bvh_intersect(&s->bvh, s->prims, r, h);
-}
-static int occluded(const struct scene *s, const struct ray *r, int motion)
-{
-    return motion ? mc_scene_occluded(s, r) : mc_bvh_occluded(&s->bvh, s->prims, r);
-}
-static void surface(const struct scene *s, const struct ray *r, const struct hit *h,
-                    struct surface *sf, int motion)
-{
-    if (motion)
-        mc_scene_surface(s, r, h, sf);
-    else
-        mc_prim_surface(&s->prims[h->prim], s->normals, r, h, sf);
-}
 
 /* ---- the state ---- */
 
@@ -150,55 +122,12 @@ struct pass_ctx {
     const struct render_settings *rs;
     struct sppm_state *st;
     struct camera cam;
-    int pass, motion, lens, mis;
+    int pass, lens, mis;
+    unsigned motion; /* FEATURE_MOTION when the scene moves, else 0: the F of path_vertex.h */
     uint32_t sampler_spp;
     float time;
     uint64_t seed;
 };
-
-/* One light sample from sf (as path.c's light_sample), MIS-weighted against BSDF sampling when
- * there are non-delta lights. */
-static vec3 light_sample(const struct pass_ctx *c, const struct surface *sf, const frame *fr,
-                         const struct bsdf *b, vec3 wo, struct sampler *smp, uint64_t *rays, int n)
-{
-    const struct scene *s = c->s;
-    struct light_sample ls;
-    struct ray shadow;
-    float pmf, light_pdf, weight;
-    vec3 wi, f, target;
-    int li = mc_alias_sample(&s->light_select, mc_sampler_1d_double(smp), &pmf);
-    vec2 u = mc_sampler_2d(smp);
-    if (li < 0 || !mc_light_sample(&s->light_scene, &s->lights[li], sf->p, c->time, u, &ls)
-        || v3_is_zero(ls.L))
-        return v3s(0.0f);
-    wi = frame_to_local(fr, ls.wi);
-    f = v3_scale(mc_bsdf_eval(b, wo, wi, MC_RADIANCE), fabsf(wi.z));
-    if (v3_is_zero(f))
-        return v3s(0.0f);
-    shadow.o = ray_spawn(sf->p, side_normal(sf->ng, ls.wi), sf->err);
-    shadow.time = c->time;
-    if (isinf(ls.dist)) {
-        shadow.d = ls.wi;
-        shadow.tmax = INFINITY;
-    } else {
-        target = v3_is_zero(ls.normal)
-                     ? ls.point
-                     : ray_spawn(ls.point, ls.normal,
-                                 mc_prim_point_error(&s->prims[s->lights[li].prim]));
-        shadow.d = v3_sub(target, shadow.o);
-        shadow.tmax = v3_length(shadow.d);
-        if (!(shadow.tmax > 0.0f))
-            return v3s(0.0f);
-        shadow.d = v3_scale(shadow.d, 1.0f / shadow.tmax);
-    }
-    ++*rays;
-    if (occluded(s, &shadow, c->motion))
-        return v3s(0.0f);
-    light_pdf = pmf * ls.pdf;
-    weight = !c->mis || ls.delta ? 1.0f
-                                 : power_heuristic((float)n * light_pdf, mc_bsdf_pdf(b, wo, wi));
-    return v3_scale(v3_mul(f, ls.L), weight / ((float)n * light_pdf));
-}
 
 static vec3 direct(const struct pass_ctx *c, const struct surface *sf, const frame *fr,
                    const struct bsdf *b, vec3 wo, struct sampler *smp, uint64_t *rays)
@@ -206,7 +135,7 @@ static vec3 direct(const struct pass_ctx *c, const struct surface *sf, const fra
     vec3 L = v3s(0.0f);
     int i, n = c->cfg->light_samples;
     for (i = 0; i < n; i++)
-        L = v3_add(L, light_sample(c, sf, fr, b, wo, smp, rays, n));
+        L = v3_add(L, light_sample(c->s, sf, c->time, fr, b, wo, smp, rays, n, c->motion, c->mis));
     return L;
 }
 
@@ -796,7 +725,7 @@ static mcrt_status sppm_render(const struct integrator *self, void *state, const
     c.rs = rs;
     c.st = &st;
     mc_camera_init(&c.cam, &s->camera, s->film.width, s->film.height);
-    c.motion = (rs->features & FEATURE_MOTION) != 0;
+    c.motion = rs->features & FEATURE_MOTION;
     c.lens = (rs->features & FEATURE_LENS) != 0;
     c.mis = mc_features_need_mis(rs->features);
     c.sampler_spp = (uint32_t)max_passes;
