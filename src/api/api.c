@@ -258,7 +258,8 @@ const char *mcrt_scene_info(mcrt_scene *s)
     f = mc_scene_features(sc);
     dims = mc_feature_dims(f, &sc->integrator);
     bvh_bytes = mc_bvh_bytes(&sc->bvh) + mc_bvh_bytes(&sc->motion_bvh)
-                + sc->prim_count * sizeof *sc->prims + sc->normal_count * sizeof *sc->normals;
+                + sc->prim_count * sizeof *sc->prims + sc->normal_count * sizeof *sc->normals
+                + (sc->uvs ? sc->normal_count * sizeof *sc->uvs : 0);
     w = snprintf(s->info, sizeof s->info, "features:");
     n = w > 0 ? (size_t)w : 0;
     for (bit = 1; bit <= FEATURE_ALL && n < sizeof s->info; bit <<= 1)

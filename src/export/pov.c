@@ -194,7 +194,7 @@ static mcrt_status pov_check(const struct scene *s, mc_diag *d)
             return refuse(d, mc_shape_names[p->kind], "the shape has no POV-Ray mapping");
         if ((st = check_material(m, d)) != MCRT_OK)
             return st;
-        if (p->normals >= 0)
+        if (p->normals >= 0 && !v3_is_zero(s->normals[p->normals]))
             return refuse(d, "smooth-shaded triangles", "interpolated normals are not verified");
         if (p->motion && s->motions[p->motion - 1].omega != 0.0f)
             return refuse(d, "spin", "only translations are exported as clock motion");

@@ -75,6 +75,15 @@ vec3 mc_disk_surface(const struct prim *p, const struct ray *r, const struct hit
     return v3_normalize(p->p[1]);
 }
 
+/* Planar, in the frame of the disk's area samples (mc_disk_sample). */
+vec2 mc_disk_uv(const struct prim *p, const struct ray *r, const struct hit *h)
+{
+    vec3 t, b, w = v3_sub(disk_point(p, r, h->t), p->p[0]);
+    float k = 0.5f / p->p[2].x;
+    v3_basis(v3_normalize(p->p[1]), &t, &b);
+    return v2(0.5f + k * v3_dot(w, t), 0.5f + k * v3_dot(w, b));
+}
+
 vec3 mc_disk_sample(const struct prim *p, vec2 u, vec3 *n)
 {
     vec2 d = mc_warp_concentric_disk(u);

@@ -1,6 +1,6 @@
 /* prim.c: the primitives' interface over the shapes of MC_SHAPES: a switch over the kind that
  * calls the shape's own function (src/geom/NAME.c), and what every shape shares: the flip, the
- * interpolated shading normals of mesh triangles, the point error and the table of descriptors.
+ * interpolated shading normals and texture coordinates of mesh triangles, the point error and the table of descriptors.
  * A switch rather than an array of function pointers: it compiles to a jump table of tail calls,
  * and the BVH's leaves call mc_prim_intersect_prep once per primitive they test. */
 #include "geom/prim.h"
@@ -88,6 +88,23 @@ void mc_prim_surface(const struct prim *p, const vec3 *normals, const struct ray
         }
     }
     s->front = v3_dot(r->d, s->ng) < 0.0f;
+}
+
+vec2 mc_prim_uv(const struct prim *p, const vec2 *uvs, const struct ray *r, const struct hit *h)
+{
+    /* Mesh triangles: the corners' coordinates, interpolated by the barycentrics. */
+    if (p->kind == PRIM_TRIANGLE && p->normals >= 0 && uvs) {
+        const vec2 *t = uvs + p->normals;
+        float b0 = 1.0f - h->u - h->v;
+        return v2(b0 * t[0].x + h->u * t[1].x + h->v * t[2].x,
+                  b0 * t[0].y + h->u * t[1].y + h->v * t[2].y);
+    }
+    switch (p->kind) {
+#define X(kind, name) case kind: return mc_##name##_uv(p, r, h);
+        MC_SHAPES(X)
+#undef X
+    }
+    return v2(0.0f, 0.0f);
 }
 
 vec3 mc_prim_sample_area(const struct prim *p, vec2 u, vec3 *n)

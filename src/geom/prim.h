@@ -28,7 +28,9 @@ struct prim {
     uint16_t motion;  /* 0: static; k: moves by scene->motions[k - 1] (p[] hold its place at time 0) */
     int32_t material; /* index into scene->materials */
     int32_t light;    /* index into scene->lights when emitting, else -1 (set by scene prepare) */
-    int32_t normals;  /* triangle: index of its 3 shading normals in scene->normals, or -1 */
+    int32_t normals;  /* mesh triangle: index k of its corners' attributes, or -1: the shading
+                       * normals scene->normals[k..k+2] (zero: flat) and, when the scene has
+                       * texture coordinates at all, scene->uvs[k..k+2] */
     /* The shape's parameters, as its file src/geom/NAME.c lays them out:
      * triangle: the vertices p[0..2]; front side along (p1-p0)×(p2-p0).
      * sphere:   p[0] the centre, p[1].x the radius; front side outward.
@@ -155,6 +157,20 @@ float mc_prim_area(const struct prim *p);
 /* Surface at a hit; normals is the scene's shading-normal array (used when p->normals >= 0). */
 void mc_prim_surface(const struct prim *p, const vec3 *normals, const struct ray *r,
                      const struct hit *h, struct surface *s);
+/* The texture coordinates (u, v) of hit h of ray r (in p's own frame, as for mc_prim_surface),
+ * the parametrisation man/mcrt.5 documents (Texture coordinates), the same on both sides and under
+ * flip. On demand rather than in struct surface: only textured materials pay for them.
+ * sphere:   with d = (p − centre)/radius, u = atan2(d.x, −d.z)/2π + 1/2 (the environment map's
+ *           longitude, light/envmap.c: u = 1/2 towards −z, 3/4 towards +x) and v = 1 − θ/π, θ
+ *           the angle from +y (v = 1 at the north pole, 0 at the south);
+ * quad:     (s, t) along edge1, edge2: corner (0, 0), corner + edge1 (1, 0);
+ * disk:     planar, u = 1/2 + w·t/2r, v = 1/2 + w·b/2r, w = p − centre, (t, b) the tangent frame
+ *           v3_basis gives the normal (t = +x, b = +y for normal +z; t = +x, b = −z for +y),
+ *           the frame of its area samples: the disk is inscribed in the unit square;
+ * triangle: the barycentrics of v1 and v2 (v0 (0, 0), v1 (1, 0), v2 (0, 1)), or for a mesh
+ *           triangle with texture coordinates (uvs not NULL, p->normals >= 0) those
+ *           interpolated by them. */
+vec2 mc_prim_uv(const struct prim *p, const vec2 *uvs, const struct ray *r, const struct hit *h);
 /* Bound on the distance between a computed point of p (a hit point, an area sample) and p's
  * surface as mc_prim_intersect sees it. Both are computed from p's parameters, whose rounding is
  * relative to their magnitude M (the largest coordinate of a vertex, corner plus edges, or centre

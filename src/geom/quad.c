@@ -52,6 +52,13 @@ vec3 mc_quad_surface(const struct prim *p, const struct ray *r, const struct hit
     return v3_normalize(v3_cross(p->p[1], p->p[2]));
 }
 
+vec2 mc_quad_uv(const struct prim *p, const struct ray *r, const struct hit *h)
+{
+    (void)p;
+    (void)r;
+    return v2(h->u, h->v);
+}
+
 vec3 mc_quad_sample(const struct prim *p, vec2 u, vec3 *n)
 {
     vec3 q = v3_add(v3_add(p->p[0], v3_scale(p->p[1], u.x)), v3_scale(p->p[2], u.y));

@@ -14,6 +14,7 @@
  *   mc_NAME_surface    the hit point from the shape's own parameters; returns the unit geometric
  *                      normal on the front side before any flip
  *   mc_NAME_sample     a point uniform in area, with the unit front-side normal before any flip
+ *   mc_NAME_uv         the texture coordinates of the hit (mc_prim_uv)
  *   mc_NAME_shape      its descriptor: block name and parameters in the scene language */
 #define MC_SHAPE_DECLARE(kind, name)                                                           \
     int mc_##name##_intersect(const struct prim *p, const struct ray_prep *q, struct hit *h);  \
@@ -23,6 +24,7 @@
     vec3 mc_##name##_surface(const struct prim *p, const struct ray *r, const struct hit *h,   \
                              vec3 *point);                                                     \
     vec3 mc_##name##_sample(const struct prim *p, vec2 u, vec3 *n);                            \
+    vec2 mc_##name##_uv(const struct prim *p, const struct ray *r, const struct hit *h);       \
     extern const struct shape mc_##name##_shape;
 MC_SHAPES(MC_SHAPE_DECLARE)
 #undef MC_SHAPE_DECLARE

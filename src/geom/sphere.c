@@ -69,6 +69,16 @@ vec3 mc_sphere_surface(const struct prim *p, const struct ray *r, const struct h
     return ng;
 }
 
+/* The environment map's longitude (light/envmap.c) and the latitude from the south pole of the
+ * outward direction, as mc_sphere_surface finds it; θ by atan2 rather than acos(y), which says
+ * little about θ near the poles. */
+vec2 mc_sphere_uv(const struct prim *p, const struct ray *r, const struct hit *h)
+{
+    vec3 d = v3_normalize(v3_sub(v3_madd(r->o, r->d, h->t), p->p[0]));
+    return v2(atan2f(d.x, -d.z) * (0.5f / MC_PI) + 0.5f,
+              1.0f - atan2f(sqrtf(d.x * d.x + d.z * d.z), d.y) * (1.0f / MC_PI));
+}
+
 vec3 mc_sphere_sample(const struct prim *p, vec2 u, vec3 *n)
 {
     vec3 w = mc_warp_uniform_sphere(u);

@@ -106,6 +106,14 @@ vec3 mc_triangle_surface(const struct prim *p, const struct ray *r, const struct
     return v3_normalize(normal(p));
 }
 
+/* A mesh triangle's own coordinates are prim.c's (mc_prim_uv). */
+vec2 mc_triangle_uv(const struct prim *p, const struct ray *r, const struct hit *h)
+{
+    (void)p;
+    (void)r;
+    return v2(h->u, h->v);
+}
+
 vec3 mc_triangle_sample(const struct prim *p, vec2 u, vec3 *n)
 {
     vec2 b = mc_warp_triangle(u);

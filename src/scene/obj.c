@@ -33,10 +33,11 @@ static int vec3_push(struct vec3_array *a, vec3 x)
     return 0;
 }
 
-/* One corner of a face: indices into the vertex and normal arrays (normal -1 when absent). */
+/* One corner of a face: indices into the vertex, texture coordinate and normal arrays (uv and
+ * normal -1 when absent). */
 struct corner {
     size_t v;
-    long normal;
+    long uv, normal;
 };
 
 struct reader {
@@ -47,8 +48,7 @@ struct reader {
     int line;
     float nxf[9];           /* normal matrix: sign(det)·cofactor(A), scaled to max |entry| 1 */
     int mirror;             /* det(A) < 0 */
-    struct vec3_array v, vn;
-    size_t vt_count;
+    struct vec3_array v, vn, vt; /* vt: (u, v, 0) */
     struct obj_stats stats;
 };
 
@@ -97,11 +97,13 @@ static mcrt_status nomem(struct reader *r)
     return mc_fail(r->d, MCRT_ERR_NOMEM, "%s: out of memory loading '%s'", r->m->origin, r->m->path);
 }
 
-/* Read the three numbers after a v or vn keyword (kw); anything after them (the optional w of
- * a vertex, or the vertex colours some exporters write) is ignored. */
-static mcrt_status read_vec3(struct reader *r, const char *kw, const char *p, const char *le, vec3 *out)
+/* Read up to three numbers after a v, vn or vt keyword (kw), of which the first need must be
+ * there; the others are 0 when absent. Anything after the third (the optional w of a vertex or a
+ * texture coordinate, or the vertex colours some exporters write) is ignored. */
+static mcrt_status read_vec3(struct reader *r, const char *kw, const char *p, const char *le,
+                             int need, vec3 *out)
 {
-    float x[3];
+    float x[3] = {0.0f, 0.0f, 0.0f};
     int i, kwlen = (int)(token_end(kw, le) - kw);
     char buf[48];
     for (i = 0; i < 3; i++) {
@@ -109,8 +111,11 @@ static mcrt_status read_vec3(struct reader *r, const char *kw, const char *p, co
         char *endp = NULL;
         double v = 0.0;
         p = skip_blank(p, le);
+        if (i >= need && (p == le || *p == '#'))
+            break;
         if (p == le)
-            return fail_at(r, kw, "'%.*s' needs 3 numbers, found %d", kwlen, kw, i);
+            return fail_at(r, kw, "'%.*s' needs %d number%s, found %d", kwlen, kw, need,
+                           need == 1 ? "" : "s", i);
         q = token_end(p, le);
         if (q - p > 255) /* as in scene files; it also bounds the time strtod may take */
             return fail_at(r, p, "number longer than 255 characters");
@@ -142,7 +147,7 @@ static vec3 xform_point(const float *m, vec3 p)
 static mcrt_status read_vertex(struct reader *r, const char *kw, const char *le)
 {
     vec3 p;
-    mcrt_status st = read_vec3(r, kw, kw + 1, le, &p);
+    mcrt_status st = read_vec3(r, kw, kw + 1, le, 3, &p);
     if (st)
         return st;
     p = xform_point(r->m->xform, p);
@@ -158,7 +163,7 @@ static mcrt_status read_normal(struct reader *r, const char *kw, const char *le)
     const float *a = r->nxf;
     vec3 n;
     double x, y, z, l;
-    mcrt_status st = read_vec3(r, kw, kw + 2, le, &n);
+    mcrt_status st = read_vec3(r, kw, kw + 2, le, 3, &n);
     if (st)
         return st;
     x = (double)a[0] * n.x + (double)a[1] * n.y + (double)a[2] * n.z;
@@ -167,6 +172,18 @@ static mcrt_status read_normal(struct reader *r, const char *kw, const char *le)
     l = sqrt(x * x + y * y + z * z);
     n = l > 0.0 && isfinite(l) ? v3((float)(x / l), (float)(y / l), (float)(z / l)) : v3s(0.0f);
     return vec3_push(&r->vn, n) ? nomem(r) : MCRT_OK;
+}
+
+/* A vt: u, and v (0 when absent, as the format says); a w is ignored. Texture coordinates are not
+ * transformed: they live on the surface. */
+static mcrt_status read_uv(struct reader *r, const char *kw, const char *le)
+{
+    vec3 t;
+    mcrt_status st = read_vec3(r, kw, kw + 2, le, 1, &t);
+    if (st)
+        return st;
+    t.z = 0.0f;
+    return vec3_push(&r->vt, t) ? nomem(r) : MCRT_OK;
 }
 
 /* An index: an optional '-' and 1 to 12 digits (longer is out of range anyway). Returns the end,
@@ -204,7 +221,6 @@ static mcrt_status read_corner(struct reader *r, const char *p, const char *e, s
 {
     const char *q = p;
     long long iv, it = 0, in = 0;
-    size_t unused;
     mcrt_status st;
     char buf[48];
     int has_t = 0, has_n = 0;
@@ -226,10 +242,13 @@ static mcrt_status read_corner(struct reader *r, const char *p, const char *e, s
         return fail_at(r, p, "malformed face vertex '%s' (expected v, v/vt, v//vn or v/vt/vn)",
                        show(p, e, buf));
     st = resolve(r, p, iv, r->v.n, "face", "vertex", "vertices", &c->v);
-    if (!st && has_t)
-        st = resolve(r, p, it, r->vt_count, "texture coordinate", "texture coordinate",
-                     "texture coordinates", &unused);
-    c->normal = -1;
+    c->uv = c->normal = -1;
+    if (!st && has_t) {
+        size_t t;
+        st = resolve(r, p, it, r->vt.n, "texture coordinate", "texture coordinate",
+                     "texture coordinates", &t);
+        c->uv = (long)t;
+    }
     if (!st && has_n) {
         size_t n;
         st = resolve(r, p, in, r->vn.n, "normal", "normal", "normals", &n);
@@ -238,9 +257,10 @@ static mcrt_status read_corner(struct reader *r, const char *p, const char *e, s
     return st;
 }
 
-/* Add triangle (a, b, c), reversing the winding under a mirroring transform (obj.h). */
+/* Add triangle (a, b, c), reversing the winding under a mirroring transform (obj.h), with its
+ * corners' normals when smooth and their texture coordinates when textured. */
 static mcrt_status add_triangle(struct reader *r, struct corner a, struct corner b, struct corner c,
-                                int smooth)
+                                int smooth, int textured)
 {
     struct prim t = r->m->proto;
     if (r->mirror) {
@@ -258,9 +278,17 @@ static mcrt_status add_triangle(struct reader *r, struct corner a, struct corner
         r->stats.degenerate++;
         return MCRT_OK;
     }
-    if (smooth) {
-        t.normals = mc_scene_add_normals(r->s, r->vn.v[a.normal], r->vn.v[b.normal],
-                                         r->vn.v[c.normal]);
+    if (smooth || textured) {
+        const struct corner *k[3] = {&a, &b, &c};
+        vec3 n[3];
+        vec2 uv[3];
+        int i;
+        for (i = 0; i < 3; i++) {
+            n[i] = smooth ? r->vn.v[k[i]->normal] : v3s(0.0f);
+            if (textured)
+                uv[i] = v2(r->vt.v[k[i]->uv].x, r->vt.v[k[i]->uv].y);
+        }
+        t.normals = mc_scene_add_corners(r->s, n, textured ? uv : NULL);
         if (t.normals < 0)
             return nomem(r);
     }
@@ -274,9 +302,9 @@ static mcrt_status add_triangle(struct reader *r, struct corner a, struct corner
  * is known to hold for every corner), then added as the fan (0, k, k+1). */
 static mcrt_status read_face(struct reader *r, const char *kw, const char *le)
 {
-    struct corner first = {0, -1}, prev = {0, -1}, c;
+    struct corner first = {0, -1, -1}, prev = {0, -1, -1}, c;
     const char *p, *q;
-    int n = 0, smooth = 1, pass;
+    int n = 0, smooth = 1, textured = 1, pass;
     mcrt_status st;
     for (pass = 0; pass < 2; pass++) {
         /* A '#' ends the corners: some exporters put comments after them. */
@@ -288,11 +316,12 @@ static mcrt_status read_face(struct reader *r, const char *kw, const char *le)
             if (pass == 0) {
                 n++;
                 smooth = smooth && c.normal >= 0 && !v3_is_zero(r->vn.v[c.normal]);
+                textured = textured && c.uv >= 0;
                 continue;
             }
             if (n == 0)
                 first = c;
-            else if (n >= 2 && (st = add_triangle(r, first, prev, c, smooth)))
+            else if (n >= 2 && (st = add_triangle(r, first, prev, c, smooth, textured)))
                 return st;
             prev = c;
             n++;
@@ -318,10 +347,8 @@ static mcrt_status read_line(struct reader *r, const char *p, const char *le)
         return read_vertex(r, p, le);
     if (n == 2 && p[0] == 'v' && p[1] == 'n')
         return read_normal(r, p, le);
-    if (n == 2 && p[0] == 'v' && p[1] == 't') {
-        r->vt_count++;
-        return MCRT_OK;
-    }
+    if (n == 2 && p[0] == 'v' && p[1] == 't')
+        return read_uv(r, p, le);
     if (n == 1 && p[0] == 'f')
         return read_face(r, p, le);
     /* Every other statement (o, g, s, usemtl, mtllib, l, p, curves...) is ignored, but only if it
@@ -417,6 +444,7 @@ mcrt_status mc_obj_load(struct scene *s, const struct obj_mesh *m, struct obj_st
     free(buf);
     free(r.v.v);
     free(r.vn.v);
+    free(r.vt.v);
     if (stats)
         *stats = r.stats;
     if (st)

@@ -1,5 +1,5 @@
 /* obj.h: Wavefront OBJ triangle meshes loaded into the scene as triangle primitives.
- * Reads v, vn and f (forms v, v/vt, v//vn, v/vt/vn; negative indices count back from the latest
+ * Reads v, vn, vt and f (forms v, v/vt, v//vn, v/vt/vn; negative indices count back from the latest
  * element; polygons become triangle fans) and ignores every other statement. */
 #ifndef MCRT_OBJ_H
 #define MCRT_OBJ_H
@@ -29,9 +29,11 @@ struct obj_stats {
 /* Append the mesh's triangles to s. Vertices are mapped by xform; shading normals (used on a face
  * when all its vertices have a vn of nonzero length) by its inverse transpose, renormalised. When
  * xform mirrors (negative determinant) each triangle's winding is reversed so that its front side
- * stays on the side the file's winding and normals meant. Messages are "path:line:col: what" for
- * malformed contents (MCRT_ERR_PARSE), "origin: cannot open/read 'path': reason" (MCRT_ERR_IO),
- * "origin: 'path' has no faces" (MCRT_ERR_PARSE) and MCRT_ERR_NOMEM. On failure the triangles
+ * stays on the side the file's winding and normals meant. Texture coordinates (vt u [v [w]], v
+ * 0 when absent) are used on a face when all its corners have one; they are not transformed.
+ * Messages are "path:line:col: what" for malformed contents (MCRT_ERR_PARSE), "origin: cannot
+ * open/read 'path': reason" (MCRT_ERR_IO), "origin: 'path' has no faces" (MCRT_ERR_PARSE) and
+ * MCRT_ERR_NOMEM. On failure the triangles
  * already added stay in s (mc_scene_free releases them). stats may be NULL. */
 mcrt_status mc_obj_load(struct scene *s, const struct obj_mesh *m, struct obj_stats *stats,
                         mc_diag *d);

@@ -48,6 +48,7 @@ void mc_scene_free(struct scene *s)
     free(s->materials);
     free(s->prims);
     free(s->normals);
+    free(s->uvs);
     free(s->lights);
     free(s->motions);
     while (s->image_count > 0) {
@@ -90,13 +91,35 @@ int mc_scene_add_prim(struct scene *s, const struct prim *p)
     return push((void **)&s->prims, &s->prim_count, &s->prim_cap, sizeof *p, p);
 }
 
-int mc_scene_add_normals(struct scene *s, vec3 n0, vec3 n1, vec3 n2)
+/* The uv array holds as many elements as the normals once it exists: a scene whose meshes have no
+ * texture coordinates never allocates it; the first that has them fills the earlier corners with
+ * their triangles' own coordinates. */
+int mc_scene_add_corners(struct scene *s, const vec3 n[3], const vec2 *uv)
 {
-    int first = push((void **)&s->normals, &s->normal_count, &s->normal_cap, sizeof n0, &n0);
-    if (first < 0 || push((void **)&s->normals, &s->normal_count, &s->normal_cap, sizeof n1, &n1) < 0
-        || push((void **)&s->normals, &s->normal_count, &s->normal_cap, sizeof n2, &n2) < 0)
-        return -1;
-    return first;
+    static const vec2 own[3] = {{0.0f, 0.0f}, {1.0f, 0.0f}, {0.0f, 1.0f}};
+    size_t first = s->normal_count, i;
+    for (i = 0; i < 3; i++)
+        if (push((void **)&s->normals, &s->normal_count, &s->normal_cap, sizeof *n, &n[i]) < 0) {
+            s->normal_count = first;
+            return -1;
+        }
+    if (!uv && !s->uvs)
+        return (int)first;
+    if (s->uv_cap < s->normal_cap) {
+        vec2 *p = mc_realloc(s->uvs, s->normal_cap * sizeof *p);
+        if (!p) {
+            s->normal_count = first;
+            return -1;
+        }
+        if (!s->uvs)
+            for (i = 0; i < first; i++)
+                p[i] = own[i % 3];
+        s->uvs = p;
+        s->uv_cap = s->normal_cap;
+    }
+    for (i = 0; i < 3; i++)
+        s->uvs[first + i] = uv ? uv[i] : own[i];
+    return (int)first;
 }
 
 int mc_scene_add_light(struct scene *s, const struct light *l)

@@ -65,8 +65,12 @@ struct scene {
 
     struct prim *prims;
     size_t prim_count, prim_cap;
-    vec3 *normals;                   /* shading normals, 3 per smooth triangle */
+    vec3 *normals;                   /* mesh triangles' corner attributes (prim.normals): shading
+                                        normals, 3 per triangle, zero when flat */
     size_t normal_count, normal_cap;
+    vec2 *uvs;                       /* their texture coordinates, uvs[i] for normals[i]; NULL
+                                        until some mesh has them (uv_cap = 0 then) */
+    size_t uv_cap;
 
     struct motion *motions;          /* a moving primitive's motion is motions[prim.motion - 1] */
     size_t motion_count, motion_cap;
@@ -99,7 +103,9 @@ void mc_scene_free(struct scene *s);
 /* Adders: each returns the new element's index, or -1 when out of memory. */
 int mc_scene_add_material(struct scene *s, const struct material *m);
 int mc_scene_add_prim(struct scene *s, const struct prim *p);
-int mc_scene_add_normals(struct scene *s, vec3 n0, vec3 n1, vec3 n2);
+/* A mesh triangle's corner attributes (prim.normals): its 3 shading normals (zero when flat) and
+ * its 3 texture coordinates, or uv NULL for the triangle's own (its barycentrics, geom/prim.h). */
+int mc_scene_add_corners(struct scene *s, const vec3 n[3], const vec2 *uv);
 int mc_scene_add_light(struct scene *s, const struct light *l);
 /* A motion, for prims whose `motion` field is the returned index + 1; -1 when out of memory or
  * past 65535 motions. */
@@ -122,6 +128,8 @@ int mc_scene_intersect(const struct scene *s, const struct ray *r, struct hit *h
 int mc_scene_occluded(const struct scene *s, const struct ray *r);
 void mc_scene_surface(const struct scene *s, const struct ray *r, const struct hit *h,
                       struct surface *sf);
+/* The texture coordinates of the hit (mc_prim_uv), a moving primitive's in its own frame. */
+vec2 mc_scene_uv(const struct scene *s, const struct ray *r, const struct hit *h);
 
 /* Parse scene text (parse.c). name is used in messages; base_dir is where relative OBJ paths start
  * (NULL = current directory). On failure the message is "name:line:col: what is wrong" and s is

@@ -27,6 +27,20 @@ int mc_scene_occluded(const struct scene *s, const struct ray *r)
             && mc_bvh_occluded_moving(&s->motion_bvh, s->prims + s->static_count, s->motions, r));
 }
 
+vec2 mc_scene_uv(const struct scene *s, const struct ray *r, const struct hit *h)
+{
+    const struct prim *p = &s->prims[h->prim];
+    struct rigid x;
+    if (p->motion == 0)
+        return mc_prim_uv(p, s->uvs, r, h);
+    /* In the primitive's time-0 frame, as mc_scene_surface. */
+    mc_motion_at(&s->motions[p->motion - 1], r->time, &x);
+    {
+        struct ray local = rigid_inv_ray(&x, r);
+        return mc_prim_uv(p, s->uvs, &local, h);
+    }
+}
+
 void mc_scene_surface(const struct scene *s, const struct ray *r, const struct hit *h,
                       struct surface *sf)
 {

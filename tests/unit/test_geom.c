@@ -1,6 +1,6 @@
 /* test_geom.c: primitive intersection with known answers, precision (far spheres), watertightness
  * on closed meshes (through brute force and through the BVH), degenerate triangles, surface
- * normals, area sampling, areas and bounds. */
+ * normals, texture coordinates, area sampling, areas and bounds. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -529,6 +529,102 @@ static void test_sampling(void)
     T_NEAR((double)corner / N, 0.25, 5 * sqrt(0.25 * 0.75 / N), "corner fraction");
 }
 
+/* The uv of the hit seen along ray o + t·d, (-1, -1) for a miss. */
+static vec2 uv_at(const struct prim *p, vec3 o, vec3 d)
+{
+    struct hit h;
+    struct ray r = test_ray(o, d);
+    if (!test_hit1(p, r, &h))
+        return v2(-1.0f, -1.0f);
+    return mc_prim_uv(p, NULL, &r, &h);
+}
+
+/* The texture coordinates of each shape at known points (mc_prim_uv in prim.h; man/mcrt.5).
+ * The tolerance, 1e-6, is 8 float ulps of 1: the hit point and atan2f round by a few ulps. */
+static void test_uv(void)
+{
+    const float tol = 1e-6f;
+    struct prim p = sphere(v3(1, 2, 3), 2.0f);
+    vec2 uv;
+    pcg32 g;
+    int i;
+    uv = uv_at(&p, v3(1, 2, -10), v3(0, 0, 1)); /* towards -z from the centre: the map's centre */
+    T_NEAR(uv.x, 0.5, tol, "sphere -z u");
+    T_NEAR(uv.y, 0.5, tol, "sphere -z v");
+    uv = uv_at(&p, v3(10, 2, 3), v3(-1, 0, 0));
+    T_NEAR(uv.x, 0.75, tol, "sphere +x u");
+    T_NEAR(uv.y, 0.5, tol, "sphere +x v");
+    uv = uv_at(&p, v3(-10, 2, 3), v3(1, 0, 0));
+    T_NEAR(uv.x, 0.25, tol, "sphere -x u");
+    uv = uv_at(&p, v3(1, 10, 3), v3(0, -1, 0));
+    T_NEAR(uv.y, 1.0, tol, "sphere north pole v");
+    uv = uv_at(&p, v3(1, -10, 3), v3(0, 1, 0));
+    T_NEAR(uv.y, 0.0, tol, "sphere south pole v");
+    /* 45 degrees north, towards -z: v = 3/4. */
+    uv = uv_at(&p, v3(1, 2 + 20, 3 - 20), v3_normalize(v3(0, -1, 1)));
+    T_NEAR(uv.x, 0.5, tol, "sphere 45N u");
+    T_NEAR(uv.y, 0.75, tol, "sphere 45N v");
+    /* Random points: (u, v) mapped back by the environment map's formula (light/envmap.c) give
+     * the outward direction (1e-5: the hit point's rounding relative to the radius). */
+    pcg32_seed(&g, 17, 1);
+    for (i = 0; i < 1000; i++) {
+        vec3 d = test_rand_dir(&g), o = v3_madd(p.p[0], d, 10.0f), back;
+        float theta, phi;
+        uv = uv_at(&p, o, v3_neg(d));
+        theta = MC_PI * (1.0f - uv.y);
+        phi = 2.0f * MC_PI * (uv.x - 0.5f);
+        back = v3(sinf(theta) * sinf(phi), cosf(theta), -sinf(theta) * cosf(phi));
+        if (!(uv.x >= 0.0f && uv.x <= 1.0f && uv.y >= 0.0f && uv.y <= 1.0f)
+            || v3_length(v3_sub(back, d)) > 1e-5f)
+            break;
+    }
+    T_CHECK(i == 1000, "sphere uv round trip failed at %d: u %g v %g", i, uv.x, uv.y);
+
+    p = test_prim(PRIM_QUAD, v3(0, 0, 0), v3(2, 0, 0), v3(0, 1, 0));
+    uv = uv_at(&p, v3(1.5f, 0.25f, 2), v3(0, 0, -1));
+    T_CHECK(uv.x == 0.75f && uv.y == 0.25f, "quad uv %g %g", uv.x, uv.y);
+    p.flags = PRIM_FLIP;
+    uv = uv_at(&p, v3(1.5f, 0.25f, 2), v3(0, 0, -1));
+    T_CHECK(uv.x == 0.75f && uv.y == 0.25f, "flipped quad uv %g %g", uv.x, uv.y);
+
+    p = test_prim(PRIM_DISK, v3(1, 2, 3), v3(0, 0, 1), v3(2, 0, 0));
+    uv = uv_at(&p, v3(1.5f, 2.25f, 10), v3(0, 0, -1)); /* w = (0.5, 0.25, 0) */
+    T_NEAR(uv.x, 0.625, tol, "disk +z u");
+    T_NEAR(uv.y, 0.5625, tol, "disk +z v");
+    uv = uv_at(&p, v3(1, 2, 10), v3(0, 0, -1));
+    T_NEAR(uv.x, 0.5, tol, "disk centre u");
+    T_NEAR(uv.y, 0.5, tol, "disk centre v");
+    p = test_prim(PRIM_DISK, v3(0, 0, 0), v3(0, 1, 0), v3(1, 0, 0)); /* t = +x, b = -z */
+    uv = uv_at(&p, v3(0.5f, 5, -0.25f), v3(0, -1, 0));
+    T_NEAR(uv.x, 0.75, tol, "disk +y u");
+    T_NEAR(uv.y, 0.625, tol, "disk +y v");
+
+    p = test_prim(PRIM_TRIANGLE, v3(0, 0, 0), v3(1, 0, 0), v3(0, 1, 0));
+    uv = uv_at(&p, v3(0.25f, 0.5f, 1), v3(0, 0, -1));
+    T_NEAR(uv.x, 0.25, tol, "triangle u");
+    T_NEAR(uv.y, 0.5, tol, "triangle v");
+    /* A mesh triangle's own texture coordinates (slot 3), interpolated by the barycentrics:
+     * b = (0.25, 0.25, 0.5) gives 0.25 (0.5, 1) + 0.25 (1, 0) + 0.5 (0, 0.5). Flat (zero
+     * normals): the shading normal stays geometric. */
+    {
+        static const vec3 normals[6] = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1},
+                                        {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+        static const vec2 uvs[6] = {{0, 0}, {1, 0}, {0, 1}, {0.5f, 1}, {1, 0}, {0, 0.5f}};
+        struct hit h;
+        struct surface s;
+        struct ray r = test_ray(v3(0.25f, 0.5f, 1), v3(0, 0, -1));
+        p.normals = 3;
+        T_CHECK(test_hit1(&p, r, &h), "mesh triangle hit");
+        uv = mc_prim_uv(&p, uvs, &r, &h);
+        T_NEAR(uv.x, 0.375, tol, "mesh u");
+        T_NEAR(uv.y, 0.5, tol, "mesh v");
+        mc_prim_surface(&p, normals, &r, &h, &s);
+        T_CHECK(s.ns.z == 1.0f, "flat mesh triangle: ns = ng");
+        uv = mc_prim_uv(&p, NULL, &r, &h);
+        T_NEAR(uv.x, 0.25, tol, "mesh without uvs: own u");
+    }
+}
+
 int main(void)
 {
     test_triangle();
@@ -537,6 +633,7 @@ int main(void)
     test_far_sphere();
     test_quad();
     test_shading_normals();
+    test_uv();
     test_watertight();
     test_area_bounds();
     test_sampling();

@@ -280,6 +280,31 @@ static struct prim moved_copy(const struct prim *p, const struct motion *m, floa
     return q;
 }
 
+/* The time-0 point of p whose texture coordinates are uv, by inverting the parametrisation
+ * (mc_prim_uv, man/mcrt.5) independently of it. */
+static vec3 point_of_uv(const struct prim *p, vec2 uv)
+{
+    switch (p->kind) {
+    case PRIM_SPHERE: {
+        float th = MC_PI * (1.0f - uv.y), ph = 2.0f * MC_PI * (uv.x - 0.5f);
+        vec3 d = v3(sinf(th) * sinf(ph), cosf(th), -sinf(th) * cosf(ph));
+        return v3_madd(p->p[0], d, p->p[1].x);
+    }
+    case PRIM_DISK: {
+        vec3 t, b;
+        float k = 2.0f * p->p[2].x;
+        v3_basis(p->p[1], &t, &b);
+        return v3_add(p->p[0],
+                      v3_add(v3_scale(t, k * (uv.x - 0.5f)), v3_scale(b, k * (uv.y - 0.5f))));
+    }
+    case PRIM_QUAD:
+        return v3_add(p->p[0], v3_add(v3_scale(p->p[1], uv.x), v3_scale(p->p[2], uv.y)));
+    default:
+        return v3_add(v3_scale(p->p[0], 1.0f - uv.x - uv.y),
+                      v3_add(v3_scale(p->p[1], uv.x), v3_scale(p->p[2], uv.y)));
+    }
+}
+
 /* A prepared scene of prims with motions (prim.motion set by the caller). */
 static void make_scene(struct scene *s, const struct prim *prims, size_t n,
                        const struct motion *motions, size_t nm, float t0, float t1)
@@ -311,7 +336,9 @@ static struct ray aimed_ray(pcg32 *g, vec3 target, float spread, float time)
 
 /* One moving primitive of each kind against its static copy at the ray's time: the same hit or
  * miss, t within 1e-4, the surface point within 1e-4 and its normal within 1e-5 (a sphere's:
- * 1e-4/radius, see below). The moving test
+ * 1e-4/radius, see below). The texture moves with the primitive: the time-0 point of the hit's
+ * texture coordinates, carried to the ray's time, is the hit point (within 1e-4: uv rounds by
+ * ≈ 1e-7 of the primitive's size ≲ 2, times 2π on a sphere). The moving test
  * maps the ray (magnitudes ≲ 20) into the time-0 frame, the copy maps the geometry; each is a few
  * float roundings of ≲ 20 (≈ 1e-6), so 1e-4 is a hundredfold margin; unit normals differ by the
  * rounding of R, ≈ 1e-7. Hit or miss can differ only for rays within that rounding of an edge; the
@@ -321,7 +348,7 @@ static void test_against_static_copy(void)
     enum { TIMES = 8, RAYS = 4000 };
     static const int kinds[] = {PRIM_SPHERE, PRIM_TRIANGLE, PRIM_QUAD, PRIM_DISK};
     pcg32 g;
-    int kind_i, hits = 0, miss_bad = 0, t_bad = 0, sf_bad = 0, occ_bad = 0, rays = 0;
+    int kind_i, hits = 0, miss_bad = 0, t_bad = 0, sf_bad = 0, occ_bad = 0, uv_bad = 0, rays = 0;
     pcg32_seed(&g, 21, 4);
     for (kind_i = 0; kind_i < 4; kind_i++) {
         struct motion m;
@@ -384,6 +411,12 @@ static void test_against_static_copy(void)
                     mc_prim_surface(&q, s.normals, &r, &hs, &b);
                     sf_bad += !near3(a.p, b.p, 1e-4f) || !near3(a.ng, b.ng, ntol)
                               || !near3(a.ns, b.ns, ntol) || a.front != b.front;
+                    {
+                        struct rigid x;
+                        vec3 back = point_of_uv(&s.prims[0], mc_scene_uv(&s, &r, &hm));
+                        mc_motion_at(&m, time, &x);
+                        uv_bad += !near3(rigid_point(&x, back), a.p, 1e-4f);
+                    }
                 }
             }
         }
@@ -395,6 +428,7 @@ static void test_against_static_copy(void)
     T_CHECK(miss_bad == 0, "%d rays disagree on hit or miss", miss_bad);
     T_CHECK(t_bad == 0, "%d distances differ", t_bad);
     T_CHECK(sf_bad == 0, "%d surfaces differ", sf_bad);
+    T_CHECK(uv_bad == 0, "%d texture coordinates do not move with their primitive", uv_bad);
     T_CHECK(occ_bad == 0, "%d occlusion answers differ from intersection", occ_bad);
 }
 

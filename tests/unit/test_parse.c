@@ -315,7 +315,8 @@ static void test_mesh_mirror(void)
     mc_scene_free(&s);
 }
 
-/* Negative indices, fans, vt forms, ignored statements and the shading-normal rules. */
+/* Negative indices, fans, vt forms, ignored statements, the shading-normal rules and the texture
+ * coordinates of faces whose corners all have a vt. */
 static void test_mesh_faces(void)
 {
     struct scene s;
@@ -331,13 +332,15 @@ static void test_mesh_faces(void)
                "\tf  5/1 6/2 7/3 8/4 9/5  \n"          /* pentagon: 3 triangles */
                "vn 0 0 2\nvn 0 0 0\n"
                "f 1/1/1 2/2/1 3/3/1\n"                /* smooth: normalised (0,0,1) */
+               "vt 0.25\nvt 0.5 0.75 1 # w ignored\n"
+               "f 1/-2 2/-1 3\n"                      /* a corner without vt: own uv */
                "f 1//1 2//1 3\n"                      /* one corner without vn: flat */
                "f 1//1 2//2 3//1\n"                   /* a zero vn: flat */
                "l 1 2\np 1\n"
                "f 1 2 3 # a comment after the corners\n");
     T_CHECK(load_mesh(&s, "mesh { file \"faces.obj\" }", &d) == MCRT_OK, "%s", d.msg);
-    T_CHECK(s.prim_count == 9, "%zu prims", s.prim_count);
-    if (s.prim_count == 9) {
+    T_CHECK(s.prim_count == 10, "%zu prims", s.prim_count);
+    if (s.prim_count == 10 && s.uvs) {
         T_CHECK(near3(s.prims[0].p[0], 0, 0, 0) && near3(s.prims[0].p[1], 1, 0, 0)
                     && near3(s.prims[0].p[2], 1, 1, 0) && near3(s.prims[1].p[1], 1, 1, 0)
                     && near3(s.prims[1].p[2], 0, 1, 0),
@@ -345,9 +348,38 @@ static void test_mesh_faces(void)
         T_CHECK(near3(s.prims[4].p[0], 2, 0, 0) && near3(s.prims[4].p[1], 2.5f, 2, 0)
                     && near3(s.prims[4].p[2], 2, 1, 0),
                 "pentagon fan");
-        T_CHECK(s.prims[5].normals == 0 && s.normal_count == 3 && near3(s.normals[1], 0, 0, 1),
-                "smooth face");
+        /* The pentagon's fan (0, k, k+1): textured, flat (zero normals), slots 0, 3, 6. */
+        T_CHECK(s.prims[2].normals == 0 && s.prims[3].normals == 3 && s.prims[4].normals == 6
+                    && v3_is_zero(s.normals[0]) && v3_is_zero(s.normals[8]),
+                "textured flat faces");
+        T_CHECK(s.uvs[0].x == 0 && s.uvs[0].y == 0 && s.uvs[1].x == 1 && s.uvs[1].y == 0
+                    && s.uvs[7].x == 0 && s.uvs[7].y == 1 && s.uvs[8].x == 0.5f
+                    && s.uvs[8].y == 0.5f,
+                "pentagon texture coordinates");
+        T_CHECK(s.prims[5].normals == 9 && s.normal_count == 12 && near3(s.normals[10], 0, 0, 1)
+                    && s.uvs[11].x == 1 && s.uvs[11].y == 1,
+                "smooth textured face");
         T_CHECK(s.prims[6].normals == -1 && s.prims[7].normals == -1, "flat faces");
+        T_CHECK(s.prims[9].normals == -1, "a face with a corner lacking vt has its own uv");
+    } else {
+        T_CHECK(0, "%zu prims, uvs %p", s.prim_count, (void *)s.uvs);
+    }
+    mc_scene_free(&s);
+    /* vt with u alone (v = 0), and the earlier corners' own coordinates filled in when the first
+     * textured face comes after untextured smooth ones. */
+    write_file(path, "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvt 0.25\nvt 0.5 0.75 1\n"
+                     "f 1//1 2//1 3//1\nf 1/1 2/2 3/1\n");
+    T_CHECK(load_mesh(&s, "mesh { file \"faces.obj\" }", &d) == MCRT_OK, "%s", d.msg);
+    if (s.prim_count == 2 && s.normal_count == 6 && s.uvs) {
+        T_CHECK(s.uvs[0].x == 0 && s.uvs[0].y == 0 && s.uvs[1].x == 1 && s.uvs[1].y == 0
+                    && s.uvs[2].x == 0 && s.uvs[2].y == 1,
+                "own uv backfilled");
+        T_CHECK(s.uvs[3].x == 0.25f && s.uvs[3].y == 0 && s.uvs[4].x == 0.5f
+                    && s.uvs[4].y == 0.75f && s.uvs[5].x == 0.25f,
+                "vt u alone, vt u v w");
+        T_CHECK(v3_is_zero(s.normals[3]) && near3(s.normals[0], 0, 0, 1), "normals");
+    } else {
+        T_CHECK(0, "%zu prims, %zu normals, uvs %p", s.prim_count, s.normal_count, (void *)s.uvs);
     }
     mc_scene_free(&s);
 }
