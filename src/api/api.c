@@ -431,8 +431,8 @@ static mcrt_status resume(mcrt_render *r, struct render_settings *rs)
     char *text;
     int w, h;
     mcrt_status st = mc_image_read_words(path, &words, &text, &w, &h, &r->err);
-    if (st != MCRT_OK)
-        return st;
+    if (st != MCRT_OK) /* a state that cannot be read is bad input, as a bad option is */
+        return st == MCRT_ERR_IO ? MCRT_ERR_INVALID : st;
     if (mc_state_parse(text, &got, &why) == 0 && mc_state_same_render(&r->state, &got, &why)) {
         if (got.merged)
             why = "a merge of several renders, which no render continues";
