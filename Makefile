@@ -7,7 +7,7 @@
 #   make check      the tests under AddressSanitizer + UndefinedBehaviorSanitizer (build-san/)
 #   make tsan       a multi-threaded render of every scene under ThreadSanitizer (build-tsan/)
 #   make fuzz       libFuzzer (clang) on the scene parser and the OBJ reader, FUZZ_TIME s each (build-fuzz/)
-#   make bench      BVH, path-tracer and photon-mapping throughput (not a test)
+#   make bench      BVH, path-tracer and photon-mapping throughput, mcrt-mpi's speed-up (not a test)
 #   make bench-error every sampler's error estimate against the truth on every scene, and the
 #                   predicted time to an error against the time taken (minutes; not a test)
 #   make ref        regenerate the POV-Ray references in ref/ (needs povray; not part of make test)
@@ -238,6 +238,7 @@ bench: all $(O)/tests/bench $(O)/tests/bench_render $(O)/tests/bench_sppm
 	$(O)/tests/bench
 	$(O)/tests/bench_render
 	$(O)/tests/bench_sppm
+	MCRT=$(O)/mcrt sh tests/tools/mpi_bench.sh
 
 # Estimated over true relMSE for every sampler at 16, 64 and 256 spp on every scene, and the
 # predicted time to a target error against the time taken (issue 14).

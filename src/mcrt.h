@@ -136,7 +136,7 @@ typedef struct mcrt_options {
      * of each pass with either. Deterministic like the passes; a crop is sampled by its own
      * errors, so its pixels differ from the whole image's. */
     int adaptive;
-    /* Render farms (mcrt(1), "RENDER FARMS"), for the per-ray integrators, not adaptive.
+    /* Render farms (mcrt(1), mcrt-mpi), for the per-ray integrators, not adaptive.
      * passes > 0: the image is to hold this many passes in all (a resumed state's included),
      * unless time_budget or target_error stop it first. first_pass: the index of the first
      * pass in the seed's sequence of passes, so that renders of passes 0 to k-1 and k to n-1

@@ -1,4 +1,4 @@
-/* main.c: mcrt-mpi, one render across the processes of an MPI job (mcrt(1), "RENDER FARMS").
+/* main.c: mcrt-mpi, one render across the processes of an MPI job (mcrt(1), mcrt-mpi).
  * Like mcrt it is a client of the public API (mcrt.h) only; MPI never enters the library.
  *
  * Rank 0 reads the scene file and broadcasts its text, so one file is read, not one per rank.
