@@ -41,6 +41,21 @@ else
     fail "--time state" "$(cat "$tmp/err")"
 fi
 
+# Stopped by Ctrl-C and continued: the passes the state says it holds, plus 5 more, are the
+# render of them all in one go.
+"$MCRT" --seed 3 --time 60 -o "$tmp/int.exr" "$tmp/s.mcrt" 2>"$tmp/err" &
+pid=$!
+sleep 1
+kill -INT $pid
+wait $pid
+held=$(sed -n 's/.*with the \([0-9]*\) complete pass.*/\1/p' "$tmp/err")
+if [ -n "$held" ] && run --resume "$tmp/int.exr" --passes $((held + 5)) --state -o "$tmp/r.exr" &&
+    run --passes $((held + 5)) --state -o "$tmp/d.exr" && cmp -s "$tmp/r.exr" "$tmp/d.exr"; then
+    ok "Ctrl-C after $held passes, --resume to $((held + 5)): byte-identical to one render"
+else
+    fail "Ctrl-C and --resume" "$(cat "$tmp/err")"
+fi
+
 # Refusals: another seed, spp, scene; too few passes; a state that is not there.
 check_refusal() { # name, expected message part, command...
     name=$1 want=$2

@@ -424,20 +424,25 @@ static mcrt_status read_part(exr_context_t ctx, struct exr_job *job, const char 
     return corrupt ? mc_fail(d, MCRT_ERR_IO, "corrupt scanline chunk") : fail(job, rv, d);
 }
 
+/* Begin job on f and open it for reading into *ctx (to exr_finish, then end, whatever this
+ * returns). */
+static exr_result_t start_read(FILE *f, struct exr_job *job, exr_context_t *ctx)
+{
+    exr_context_initializer_t init;
+    begin(job, fileno(f));
+    init = initializer(job);
+    /* Without reconstruction a damaged chunk table is an error, not a guess. */
+    init.flags = EXR_CONTEXT_FLAG_DISABLE_CHUNK_RECONSTRUCTION;
+    return exr_start_read(ctx, "image", &init);
+}
+
 mcrt_status mc_exr_read_layer(FILE *f, const char *layer, struct image *im, mc_diag *d)
 {
     struct exr_job job;
-    exr_context_initializer_t init;
     exr_context_t ctx = NULL;
-    exr_result_t rv;
-    mcrt_status st;
-
-    begin(&job, fileno(f));
-    init = initializer(&job);
-    /* Without reconstruction a damaged chunk table is an error, not a guess. */
-    init.flags = EXR_CONTEXT_FLAG_DISABLE_CHUNK_RECONSTRUCTION;
-    rv = exr_start_read(&ctx, "image", &init);
-    st = rv == EXR_ERR_SUCCESS ? read_part(ctx, &job, layer, im, d) : fail(&job, rv, d);
+    exr_result_t rv = start_read(f, &job, &ctx);
+    mcrt_status st =
+        rv == EXR_ERR_SUCCESS ? read_part(ctx, &job, layer, im, d) : fail(&job, rv, d);
     exr_finish(&ctx);
     end();
     return st;
@@ -514,16 +519,10 @@ mcrt_status mc_exr_read_words(FILE *f, struct image_words *words, char **text, i
                               mc_diag *d)
 {
     struct exr_job job;
-    exr_context_initializer_t init;
     exr_context_t ctx = NULL;
-    exr_result_t rv;
-    mcrt_status st;
-
-    begin(&job, fileno(f));
-    init = initializer(&job);
-    init.flags = EXR_CONTEXT_FLAG_DISABLE_CHUNK_RECONSTRUCTION;
-    rv = exr_start_read(&ctx, "image", &init);
-    st = rv == EXR_ERR_SUCCESS ? read_words(ctx, &job, words, text, w, h, d) : fail(&job, rv, d);
+    exr_result_t rv = start_read(f, &job, &ctx);
+    mcrt_status st = rv == EXR_ERR_SUCCESS ? read_words(ctx, &job, words, text, w, h, d)
+                                           : fail(&job, rv, d);
     exr_finish(&ctx);
     end();
     return st;
