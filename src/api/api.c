@@ -388,6 +388,11 @@ static mcrt_status settings(const mcrt_render *r, struct render_settings *rs,
     if ((o->passes || o->first_pass || o->resume) && o->adaptive)
         return mc_fail(d, MCRT_ERR_INVALID,
                        "passes, first_pass and resume do not work with adaptive sampling");
+    /* The state holds the film, not the first-hit layers, which would then miss the passes
+     * done before. */
+    if (o->resume && first_hit_aovs(o->aovs))
+        return mc_fail(d, MCRT_ERR_INVALID,
+                       "resume keeps only the film: no albedo, normal or depth layers");
     return check_aovs(o->aovs, d);
 }
 
