@@ -50,6 +50,7 @@ struct mcrt_render {
     struct render_state state;
     int has_state;
     uint32_t *sums;         /* the film as state words, made by mcrt_render_sums */
+    int sums_current;       /* whether sums holds the film as it is */
     mc_atomic_int cancel;
     mcrt_stats stats;
     mc_diag err;
@@ -488,6 +489,7 @@ mcrt_status mcrt_render_run(mcrt_render *r)
     free(r->sums);
     r->rgb = NULL;
     r->sums = NULL;
+    r->sums_current = 0;
     w = r->opt.crop_x1 ? r->opt.crop_x1 - r->opt.crop_x0 : s->film.width;
     h = r->opt.crop_y1 ? r->opt.crop_y1 - r->opt.crop_y0 : s->film.height;
     n = (size_t)w * (size_t)h;
@@ -606,9 +608,12 @@ static int is_exr(const char *path)
 static int pack_sums(mcrt_render *r)
 {
     size_t n = (size_t)r->film.width * (size_t)r->film.height * MC_STATE_WORDS;
+    if (r->sums_current)
+        return 0;
     if (!r->sums && !(r->sums = mc_malloc(n * sizeof *r->sums)))
         return -1;
     mc_state_pack(&r->film, r->sums);
+    r->sums_current = 1;
     return 0;
 }
 
@@ -671,6 +676,7 @@ mcrt_status mcrt_render_add_sums(mcrt_render *r, const void *sums, size_t bytes,
     mc_state_unpack(&more, sums);
     mc_film_merge(&r->film, &more);
     mc_film_free(&more);
+    r->sums_current = 0;
     /* Passes right after r's continue its sequence; any others make a merge. */
     if (first_pass != r->state.first_pass + r->state.passes)
         r->state.merged = 1;

@@ -15,6 +15,8 @@
  * spent) and broadcasts it: one collective per round. A rank that fails sends its message
  * instead of sums; rank 0 prints it and every rank stops; the output is written only by rank 0
  * at the end (through a temporary file), so it is never touched by a failed job. */
+#include <errno.h>
+#include <limits.h>
 #include <mpi.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -150,12 +152,16 @@ static char *broadcast_scene(const struct job *j, long *len)
     char *text = NULL;
     *len = -1;
     if (j->rank == 0) {
-        FILE *f = fopen(j->scene, "rb");
-        int ok = f && fseek(f, 0, SEEK_END) == 0 && (*len = ftell(f)) >= 0 &&
-                 fseek(f, 0, SEEK_SET) == 0 && (text = malloc((size_t)*len + 1)) &&
-                 fread(text, 1, (size_t)*len, f) == (size_t)*len;
+        FILE *f;
+        int ok;
+        errno = 0;
+        f = fopen(j->scene, "rb");
+        /* MPI counts are ints: a longer scene is surely not a scene. */
+        ok = f && fseek(f, 0, SEEK_END) == 0 && (*len = ftell(f)) >= 0 && *len < INT_MAX &&
+             fseek(f, 0, SEEK_SET) == 0 && (text = malloc((size_t)*len + 1)) &&
+             fread(text, 1, (size_t)*len, f) == (size_t)*len;
         if (!ok) {
-            fprintf(stderr, "mcrt-mpi: cannot read '%s'\n", j->scene);
+            fprintf(stderr, "%s: %s\n", j->scene, errno ? strerror(errno) : "cannot read it");
             *len = -1;
         }
         if (f)
@@ -202,6 +208,7 @@ static int render_pass(const struct job *j, const mcrt_scene *scene, int k, mcrt
 {
     mcrt_options o = j->o;
     mcrt_status st;
+    size_t bytes = 0;
     o.first_pass = k;
     o.passes = 1;
     o.time_budget = o.target_error = 0.0;
@@ -213,6 +220,11 @@ static int render_pass(const struct job *j, const mcrt_scene *scene, int k, mcrt
         return STATUS_FAIL;
     }
     st = mcrt_render_run(*out);
+    if (st == MCRT_OK && !(mcrt_render_sums(*out, &bytes) && bytes <= INT_MAX)) {
+        snprintf(msg, MSG_LEN, "%s", bytes ? "the image is too large for one MPI message"
+                                           : "out of memory for the render's sums");
+        return STATUS_FAIL;
+    }
     if (st == MCRT_OK)
         return 0;
     snprintf(msg, MSG_LEN, "%s", mcrt_render_error(*out));
