@@ -287,18 +287,22 @@ static int run(const struct job *j, const mcrt_scene *scene, mcrt_render **acc, 
                 mcrt_render_stats(*acc, &st, sizeof st);
                 stop |= st.est_relmse <= j->o.target_error;
             }
-            buf = bytes ? malloc(bytes) : NULL;
             for (r = 1; r < j->size; r++) {
-                int their = 0, kr = round * j->size + r;
+                int their = 0, kr = round * j->size + r, count;
+                MPI_Status probe;
                 MPI_Recv(&their, 1, MPI_INT, r, 0, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
                 if (their) {
                     MPI_Recv(msg, MSG_LEN, MPI_CHAR, r, 1, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
                     fprintf(stderr, "mcrt-mpi: rank %d: %s\n", r, msg);
                     code = code > their ? code : their;
                 } else if (kr < limit) {
-                    if (!buf)
+                    /* The size from the message: rank 0's own pass may have failed. */
+                    MPI_Probe(r, 2, MPI_COMM_WORLD, &probe);
+                    MPI_Get_count(&probe, MPI_BYTE, &count);
+                    if (!buf && !(buf = malloc((size_t)count)))
                         MPI_Abort(MPI_COMM_WORLD, 1); /* out of memory: nothing to do but stop */
-                    MPI_Recv(buf, (int)bytes, MPI_BYTE, r, 2, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+                    bytes = (size_t)count;
+                    MPI_Recv(buf, count, MPI_BYTE, r, 2, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
                     /* Passes after the one that met the target are dropped, as one process
                      * would not have rendered them. */
                     if (code < 0 && !stop) {
