@@ -259,6 +259,7 @@ install: all
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include \
 	  $(DESTDIR)$(PREFIX)/share/man/man1 $(DESTDIR)$(PREFIX)/share/man/man3 $(DESTDIR)$(PREFIX)/share/man/man5
 	install -m 755 $(O)/mcrt $(DESTDIR)$(PREFIX)/bin/mcrt
+	$(if $(HAVE_MPI),install -m 755 $(O)/mcrt-mpi $(DESTDIR)$(PREFIX)/bin/mcrt-mpi)
 	install -m 644 $(O)/libmcrt.a $(DESTDIR)$(PREFIX)/lib/libmcrt.a
 	install -m 644 src/mcrt.h $(DESTDIR)$(PREFIX)/include/mcrt.h
 	install -m 644 man/mcrt.1 $(DESTDIR)$(PREFIX)/share/man/man1/mcrt.1
@@ -269,7 +270,7 @@ install: all
 	  src/mcrt.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/mcrt.pc
 
 uninstall:
-	rm -f $(DESTDIR)$(PREFIX)/bin/mcrt $(DESTDIR)$(PREFIX)/lib/libmcrt.a $(DESTDIR)$(PREFIX)/include/mcrt.h \
+	rm -f $(DESTDIR)$(PREFIX)/bin/mcrt $(DESTDIR)$(PREFIX)/bin/mcrt-mpi $(DESTDIR)$(PREFIX)/lib/libmcrt.a $(DESTDIR)$(PREFIX)/include/mcrt.h \
 	  $(DESTDIR)$(PREFIX)/lib/pkgconfig/mcrt.pc $(DESTDIR)$(PREFIX)/share/man/man1/mcrt.1 \
 	  $(DESTDIR)$(PREFIX)/share/man/man3/libmcrt.3 $(DESTDIR)$(PREFIX)/share/man/man5/mcrt.5
 
