@@ -50,9 +50,13 @@ fi
 # Rank 2 runs in a folder without the mesh: as a machine whose file system lacks it.
 mkdir "$tmp/elsewhere"
 echo keep >"$tmp/keep.exr"
-mpi -np 2 --wdir "$tmp" "$MPI" --threads 1 --passes 6 -o "$tmp/keep.exr" "$tmp/s.mcrt" : \
+# Under make check, LeakSanitizer finds OpenMPI's own allocations (in its plugins, unloaded and
+# so unnamed) on this error path and would turn exit 2 into 1; the two checks above keep
+# checking mcrt-mpi's own memory.
+ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0 \
+    mpi -np 2 --wdir "$tmp" "$MPI" --threads 1 --passes 6 -o "$tmp/keep.exr" "$tmp/s.mcrt" : \
     -np 1 --wdir "$tmp/elsewhere" "$MPI" --threads 1 --passes 6 -o "$tmp/keep.exr" "$tmp/s.mcrt" \
-    2>"$tmp/err"
+        2>"$tmp/err"
 rc=$?
 if [ "$rc" -eq 2 ] && grep -q '^mcrt-mpi: rank 2: .*tri\.obj' "$tmp/err" &&
     [ "$(cat "$tmp/keep.exr")" = keep ]; then
