@@ -227,7 +227,8 @@ static mcrt_status diff_png_pfm(char *msg, size_t size)
     return st;
 }
 
-/* Write the large grid mesh for the parallel BVH build. */
+/* Write the large grid mesh for the parallel BVH build. Its upper half has texture coordinates,
+ * so that the scene's uv array is created late (filling in the lower half's) and then grows. */
 static int write_grid(const char *path)
 {
     FILE *f = fopen(path, "w");
@@ -236,11 +237,15 @@ static int write_grid(const char *path)
         return 0;
     for (j = 0; j <= GRID; j++)
         for (i = 0; i <= GRID; i++)
-            fprintf(f, "v %g 0 %g\n", (double)i / GRID - 0.5, (double)j / GRID - 0.5);
+            fprintf(f, "v %g 0 %g\nvt %g %g\n", (double)i / GRID - 0.5, (double)j / GRID - 0.5,
+                    (double)i / GRID, (double)j / GRID);
     for (j = 0; j < GRID; j++)
         for (i = 0; i < GRID; i++) {
-            int a = j * (GRID + 1) + i + 1;
-            fprintf(f, "f %d %d %d %d\n", a, a + 1, a + GRID + 2, a + GRID + 1);
+            int a = j * (GRID + 1) + i + 1, b = a + 1, c = a + GRID + 2, d = a + GRID + 1;
+            if (j < GRID / 2)
+                fprintf(f, "f %d %d %d %d\n", a, b, c, d);
+            else
+                fprintf(f, "f %d/%d %d/%d %d/%d %d/%d\n", a, a, b, b, c, c, d, d);
         }
     return fclose(f) == 0;
 }
