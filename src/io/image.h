@@ -28,6 +28,8 @@ struct image_layer {
  * named one, needs EXR (channels LAYER.R, .G, .B); other formats are refused. */
 mcrt_status mc_image_write_layers(const char *path, const struct image_layer *layers, int n, int w,
                                   int h, mc_diag *d);
+/* Whether path's suffix is a format that holds named layers (EXR, in a build with it). */
+int mc_image_layered(const char *path);
 /* Read the named layer (NULL: as mc_image_read). Only EXR files have named layers. */
 mcrt_status mc_image_read_layer(const char *path, const char *layer, struct image *im,
                                 mc_diag *d);
