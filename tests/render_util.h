@@ -14,6 +14,7 @@ struct t_render_opts {
     int spp, threads, all_features;
     uint64_t seed;
     const char *integrator;
+    const char *sampler; /* NULL: the scene's */
 };
 
 /* Render scene text; returns the RGB pixels (3 floats each, malloc'd, rows top to bottom) and their
@@ -34,6 +35,7 @@ static inline float *t_render(const char *text, const struct t_render_opts *opt,
     o.threads = opt->threads;
     o.seed = opt->seed;
     o.integrator = opt->integrator;
+    o.sampler = opt->sampler;
     o.all_features = opt->all_features;
     r = mcrt_render_new(s, &o);
     if (!r || mcrt_render_run(r) != MCRT_OK) {

@@ -93,6 +93,8 @@ void mc_bsdf_init(struct bsdf *b, const struct material *m);
 /* Whether every lobe is a delta lobe (no light sampling is useful then): mirror, smooth glass
  * (or glass of ior 1, which is no interface at all), smooth metal. */
 static inline int mc_bsdf_is_delta(const struct bsdf *b) { return b->delta; }
+/* Whether light can cross the surface (glass); every other kind only reflects. */
+int mc_bsdf_transmits(const struct bsdf *b);
 vec3 mc_bsdf_eval(const struct bsdf *b, vec3 wo, vec3 wi, enum mc_transport mode);
 float mc_bsdf_pdf(const struct bsdf *b, vec3 wo, vec3 wi);
 /* uc chooses a lobe, u the direction. Returns 0 when no direction was produced. */

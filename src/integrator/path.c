@@ -93,6 +93,8 @@ static inline vec3 radiance(const struct scene *s, const struct integrator_desc 
         if (bs.eta != 1.0f)
             eta_scale *= bs.eta * bs.eta; /* undo the 1/η² radiance scaling for roulette */
         wi = frame_to_world(&fr, bs.wi);
+        if (through_surface(&b, sf.ng, v3_neg(r.d), wi))
+            break;
         specular = bs.delta;
         prev_pdf = bs.pdf;
         prev_p = sf.p;

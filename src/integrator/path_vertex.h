@@ -40,6 +40,17 @@ static inline void surface(const struct scene *s, const struct ray *r, const str
         mc_prim_surface(&s->prims[h->prim], s->normals, r, h, sf);
 }
 
+/* Whether wo and wi (world directions) lie on the two geometric sides of a surface that only
+ * reflects. The BSDF sees them in the shading frame, where both can be above the horizon when
+ * the shading normal leans away from the geometric one: light would then pass through an
+ * opaque surface (a shadow ray spawned on the far side is not stopped by it; a reflected ray
+ * leaves through it). Such pairs carry nothing, for light and camera paths alike (pbrt-v3
+ * BSDF::f and Sample_f test the same with the geometric normal; Veach 1997 §5.3). */
+static inline int through_surface(const struct bsdf *b, vec3 ng, vec3 wo, vec3 wi)
+{
+    return !(v3_dot(wo, ng) * v3_dot(wi, ng) > 0.0f) && !mc_bsdf_transmits(b);
+}
+
 /* One shadow ray of next-event estimation, one of n: a light chosen by power, a point on it,
  * weighted against BSDF sampling when mis is nonzero (and the light is not a delta light).
  * Returns the contribution before the path throughput. */
@@ -54,7 +65,7 @@ static inline vec3 light_sample(const struct scene *s, const struct surface *sf,
     int li = mc_alias_sample(&s->light_select, mc_sampler_1d_double(smp), &pmf);
     vec2 u = mc_sampler_2d(smp);
     if (li < 0 || !mc_light_sample(&s->light_scene, &s->lights[li], sf->p, time, u, &ls)
-        || v3_is_zero(ls.L))
+        || v3_is_zero(ls.L) || through_surface(b, sf->ng, frame_to_world(fr, wo), ls.wi))
         return v3s(0.0f);
     wi = frame_to_local(fr, ls.wi);
     f = v3_scale(mc_bsdf_eval(b, wo, wi, MC_RADIANCE), fabsf(wi.z));
