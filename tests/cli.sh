@@ -274,4 +274,24 @@ else
     done
 fi
 
+# ---- environment maps (man/mcrt.5): a bad pixel or a missing file refused at load time, exit 2;
+# a constant map of 1 is the white furnace: a white diffuse sphere (albedo 1) reflects 1, every
+# pixel 1 in expectation. The image's mean error has a standard error sqrt(MSE/pixels) = 4.3e-4
+# at 64 spp (MSE 7e-5 over 384 pixels, measured), so the bias may be at most 0.002 (4.6 of them).
+gen="$O/tests/envmap_gen"
+"$gen" nan 4 2 "$tmp/nan.pfm" && "$gen" constant 16 8 "$tmp/one_map.pfm" \
+    && "$gen" constant 24 16 "$tmp/ones.pfm"
+printf 'environment { map "nan.pfm" }\n' >"$tmp/nanmap.mcrt"
+printf 'environment { map "absent.pfm" }\n' >"$tmp/absent.mcrt"
+expect "environment map with a NaN pixel" 2 "nan.pfm: pixel \(1, 0\) has a NaN value" nanmap.mcrt -o e.pfm
+expect "missing environment map" 2 "absent.pfm" absent.mcrt -o e.pfm
+printf '%s\n' 'film { width 24 height 16 spp 64 }' 'material white { diffuse 1 }' \
+    'sphere { material white }' 'environment { map "one_map.pfm" }' >"$tmp/furnace_map.mcrt"
+run furnace_map.mcrt -o fm.pfm --quiet
+if [ "$rc" -eq 0 ] && (cd "$tmp" && "$MCRT" diff fm.pfm ones.pfm --max-bias 0.002 >diff.txt 2>&1); then
+    ok "constant environment map: white furnace ($(sed -n 's/.*\(bias [^ ]*\).*/\1/p' "$tmp/diff.txt"))"
+else
+    fail "constant environment map: white furnace" "status $rc: $(cat "$tmp/err" "$tmp/diff.txt")"
+fi
+
 finish

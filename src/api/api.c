@@ -88,6 +88,20 @@ void mcrt_scene_free(mcrt_scene *s)
 
 const char *mcrt_scene_error(const mcrt_scene *s) { return s ? s->err.msg : "no scene"; }
 
+/* Read the image files the parsed scene names: the core reads none itself (src/README). */
+static mcrt_status read_images(struct scene *sc, mc_diag *d)
+{
+    size_t i;
+    for (i = 0; i < sc->image_count; i++) {
+        struct image im;
+        mcrt_status st = mc_image_read(sc->images[i].path, &im, d);
+        if (st != MCRT_OK)
+            return st;
+        mc_scene_set_image(sc, i, im.rgb, im.width, im.height);
+    }
+    return MCRT_OK;
+}
+
 /* Parse into a fresh scene and prepare it; on failure the scene is left empty but valid. */
 static mcrt_status load(mcrt_scene *s, const char *text, size_t len, const char *name,
                         const char *base_dir)
@@ -100,6 +114,8 @@ static mcrt_status load(mcrt_scene *s, const char *text, size_t len, const char 
         st = mc_fail(&s->err, MCRT_ERR_NOMEM, "%s: out of memory", name);
     if (st == MCRT_OK)
         st = mc_scene_parse(&s->s, text, len, name, base_dir, &s->err);
+    if (st == MCRT_OK)
+        st = read_images(&s->s, &s->err);
     if (st == MCRT_OK)
         st = mc_scene_prepare(&s->s, &s->err);
     if (st != MCRT_OK) {
@@ -266,6 +282,11 @@ const char *mcrt_scene_info(mcrt_scene *s)
                  sc->prim_count ? (double)bvh_bytes / (double)sc->prim_count : 0.0,
                  (size_t)sc->film.width * (size_t)sc->film.height * sizeof(struct film_pixel),
                  sc->film.width, sc->film.height);
+    n = strlen(s->info);
+    if (sc->envmap && n < sizeof s->info)
+        snprintf(s->info + n, sizeof s->info - n, "environment map: %s, %d x %d, %zu bytes\n",
+                 sc->images[sc->lights[sc->env_light].image - 1].path, sc->envmap->w,
+                 sc->envmap->h, mc_envmap_bytes(sc->envmap));
     return s->info;
 }
 

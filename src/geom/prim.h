@@ -44,7 +44,11 @@ enum param_kind {
     PARAM_POINT,     /* three numbers: a point or a vector */
     PARAM_DIRECTION, /* three numbers, normalised (in double); zero length is an error */
     PARAM_LENGTH,    /* one positive number, in .x */
-    PARAM_RGB        /* one number (grey) or three, none negative */
+    PARAM_RGB,       /* one number (grey) or three, none negative */
+    PARAM_IMAGE,     /* a quoted image file name: the parser has the scene load it and gives 1 +
+                      * the scene's image index in .x (0 when not given) */
+    PARAM_SPIN       /* four numbers, an axis and an angle in degrees: given as the unit axis
+                      * times the angle (zero when not given) */
 };
 struct block_param {
     const char *name;

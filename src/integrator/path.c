@@ -57,7 +57,8 @@ static inline vec3 radiance(const struct scene *s, const struct integrator_desc 
                 float w = specular ? 1.0f
                                    : emitted_weight(s, cfg, s->env_light, prev_p, prev_pdf, &r,
                                                     INFINITY, NULL);
-                L = v3_add(L, v3_scale(v3_mul(beta, s->lights[s->env_light].intensity), w));
+                vec3 Le = mc_environment_radiance(&s->lights[s->env_light], r.d);
+                L = v3_add(L, v3_scale(v3_mul(beta, Le), w));
             }
             break;
         }

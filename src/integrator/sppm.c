@@ -179,7 +179,8 @@ static vec3 bsdf_emission(const struct pass_ctx *c, const struct surface *sf, co
     if (!trace(s, &r, &h, c->motion)) {
         if (s->env_light < 0)
             return v3s(0.0f);
-        return v3_scale(v3_mul(bs.weight, s->lights[s->env_light].intensity),
+        vec3 Le = mc_environment_radiance(&s->lights[s->env_light], r.d);
+        return v3_scale(v3_mul(bs.weight, Le),
                         emitted_weight(c, s->env_light, sf->p, bs.pdf, &r, INFINITY, NULL));
     } else {
         struct surface lsf;
@@ -251,7 +252,8 @@ static void camera_pixel(const struct pass_ctx *c, struct tile_worker *w, int x,
                 float wt = specular || !c->mis ? 1.0f
                                                : emitted_weight(c, s->env_light, prev_p, prev_pdf,
                                                                 &r, INFINITY, NULL);
-                L = v3_add(L, v3_scale(v3_mul(beta, s->lights[s->env_light].intensity), wt));
+                Le = mc_environment_radiance(&s->lights[s->env_light], r.d);
+                L = v3_add(L, v3_scale(v3_mul(beta, Le), wt));
             }
             break;
         }

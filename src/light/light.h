@@ -1,5 +1,5 @@
-/* light.h: emitters — point lights, area lights (emitting primitives) and the constant
- * environment — with sampling by solid angle. Lights are chosen in proportion to their power by an
+/* light.h: emitters — point lights, area lights (emitting primitives) and the environment
+ * (constant or an image map, light/envmap.h) — with sampling by solid angle. Lights are chosen in proportion to their power by an
  * alias table (sample/alias.h) that the scene holds. */
 #ifndef MCRT_LIGHT_H
 #define MCRT_LIGHT_H
@@ -8,6 +8,8 @@
 
 #include "geom/motion.h"
 #include "geom/prim.h"
+
+struct envmap;
 
 /* The kinds of light, X(KIND, name): each is the file src/light/NAME.c, which defines the
  * functions of light/light_impl.h and the descriptor below. Adding a kind is that file and a line
@@ -21,6 +23,12 @@ struct light {
     vec3 position;   /* point */
     vec3 intensity;  /* point: W/sr; environment: radiance */
     uint32_t prim;   /* area: the emitting primitive */
+    /* environment: the map (NULL: the constant sky of radiance `intensity`), which `intensity`
+     * then scales; orient turns the map's own directions (light/envmap.h) into the world's;
+     * image is 1 + the scene's image the map is made from (0: none), for preparation. */
+    const struct envmap *map;
+    frame orient;
+    int image;
     double power;    /* scalar power (mean over channels) used for selection; set by prepare */
 };
 
@@ -96,6 +104,9 @@ int mc_light_sample(const struct light_scene *s, const struct light *l, vec3 p, 
  * in world space at that time), or escapes (environment). */
 float mc_light_pdf(const struct light_scene *s, const struct light *l, vec3 p, float time,
                    vec3 wi, float t, const struct surface *sf);
+/* Radiance the environment light l sends back along a ray leaving in direction d (unit). */
+vec3 mc_environment_radiance(const struct light *l, vec3 d);
+
 /* Radiance emitted by primitive pr back along the ray that found surface sf (0 when the side the
  * ray arrived on does not emit). */
 vec3 mc_light_emitted(const struct prim *pr, const struct surface *sf);

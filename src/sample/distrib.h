@@ -1,9 +1,8 @@
 /* distrib.h: tabulated distributions sampled by inverting their CDF — a piecewise-constant
  * density on an interval (1D, also usable as a discrete distribution over its bins) and on the
  * unit square (2D: a marginal over rows, then a conditional within the row), as environment
- * maps need. After pbrt-v4 PiecewiseConstant1D/2D (Pharr, Jakob and Humphreys, §A.4).
- * Nothing in the library uses it yet, only its tests (tests/unit/test_distrib.c): it is kept for
- * the environment maps of a coming change, which sample their texels in proportion to radiance.
+ * maps need (light/envmap.c samples their pixels by luminance × sin θ with the 2D one). After
+ * pbrt-v4 PiecewiseConstant1D/2D (Pharr, Jakob and Humphreys, §A.4).
  *
  * Conventions shared by both:
  * - Input values must be finite and >= 0 (MCRT_ERR_INVALID otherwise). An all-zero function

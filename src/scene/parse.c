@@ -852,6 +852,24 @@ static void add_shape(struct parser *p, const struct block *b, const struct prim
     note_motion(p, b, first, NULL);
 }
 
+/* The path of a file the scene names (an OBJ mesh, an image): as written when absolute or when
+ * there is no base directory, else under it. */
+static char *file_path(struct parser *p, const struct token *file)
+{
+    size_t nb = p->base_dir && file->text[0] != '/' ? strlen(p->base_dir) : 0;
+    int slash = nb > 0 && p->base_dir[nb - 1] != '/';
+    char *path = mc_malloc(nb + (size_t)slash + file->len + 1);
+    if (!path)
+        fail_nomem(p);
+    if (nb)
+        memcpy(path, p->base_dir, nb);
+    if (slash)
+        path[nb] = '/';
+    memcpy(path + nb + slash, file->text, file->len);
+    path[nb + (size_t)slash + file->len] = '\0';
+    return path;
+}
+
 /* The values of the parameters, keys first, first + 1, ... of b, into v: the defaults where not
  * given, directions normalised. */
 static void param_values(struct parser *p, const struct block *b, int first,
@@ -867,6 +885,16 @@ static void param_values(struct parser *p, const struct block *b, int first,
         if (params[i].kind == PARAM_DIRECTION) {
             snprintf(what, sizeof what, "%s '%s'", b->kind->name, params[i].name);
             v[i] = unit_of(p, val, what);
+        } else if (params[i].kind == PARAM_SPIN) {
+            snprintf(what, sizeof what, "%s '%s' axis", b->kind->name, params[i].name);
+            v[i] = v3_scale(unit_of(p, val, what), (float)val->x[3]);
+        } else if (params[i].kind == PARAM_IMAGE) {
+            char *path = file_path(p, &val->arg);
+            int k = mc_scene_add_image(p->s, path);
+            free(path);
+            if (k < 0)
+                fail_nomem(p);
+            v[i] = v3((float)(k + 1), 0.0f, 0.0f);
         } else {
             v[i] = params[i].kind == PARAM_LENGTH ? v3((float)val->x[0], 0.0f, 0.0f) : vec_of(val);
         }
@@ -904,23 +932,6 @@ static const struct key mesh_keys[] = {
     {"spin", V_SPIN, 0, 0, NULL, NULL, NULL},
 };
 
-/* The OBJ path: as written when absolute or when there is no base directory, else under it. */
-static char *mesh_path(struct parser *p, const struct token *file)
-{
-    size_t nb = p->base_dir && file->text[0] != '/' ? strlen(p->base_dir) : 0;
-    int slash = nb > 0 && p->base_dir[nb - 1] != '/';
-    char *path = mc_malloc(nb + (size_t)slash + file->len + 1);
-    if (!path)
-        fail_nomem(p);
-    if (nb)
-        memcpy(path, p->base_dir, nb);
-    if (slash)
-        path[nb] = '/';
-    memcpy(path + nb + slash, file->text, file->len);
-    path[nb + (size_t)slash + file->len] = '\0';
-    return path;
-}
-
 static void finish_mesh(struct parser *p, struct block *b)
 {
     const struct token *file = &b->v[MESH_FILE].arg;
@@ -932,7 +943,7 @@ static void finish_mesh(struct parser *p, struct block *b)
     if (!b->v[MESH_FILE].set)
         fail(p, &b->head, "mesh needs 'file \"NAME.obj\"'");
     snprintf(origin, sizeof origin, "%s:%d:%d", p->name, file->line, file->col);
-    m.path = mesh_path(p, file);
+    m.path = file_path(p, file);
     m.origin = origin;
     for (i = 0; i < 12; i++)
         m.xform[i] = (float)b->xf[i];
@@ -987,6 +998,10 @@ static struct key param_key(const struct block_param *bp)
     k.name = bp->name;
     if (bp->kind == PARAM_RGB)
         k.kind = V_RGB;
+    if (bp->kind == PARAM_IMAGE)
+        k.kind = V_PATH;
+    if (bp->kind == PARAM_SPIN)
+        k.kind = V_SPIN;
     if (bp->kind == PARAM_LENGTH) {
         k.kind = V_REAL;
         k.hi = INFINITY;

@@ -74,6 +74,28 @@ static float scene_radius(const struct scene *s, vec3 *center)
     return fmaxf(0.5f * v3_length(v3_sub(b.hi, b.lo)), 1e-6f);
 }
 
+/* The environment's map from its image, which the API layer has read (scene.h); the pixels move
+ * into the map, which copies them, so the image's own are released. */
+static mcrt_status build_envmap(struct scene *s, struct light *env, mc_diag *d)
+{
+    struct scene_image *im = &s->images[env->image - 1];
+    mcrt_status st;
+    if (!im->rgb)
+        return mc_fail(d, MCRT_ERR_INVALID, "%s: the environment map was not read", im->path);
+    s->envmap = mc_malloc(sizeof *s->envmap);
+    if (!s->envmap)
+        return mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
+    st = mc_envmap_build(s->envmap, im->rgb, im->w, im->h, im->path, d);
+    if (st != MCRT_OK) {
+        free(s->envmap);
+        s->envmap = NULL;
+        return st;
+    }
+    mc_scene_set_image(s, (size_t)(env->image - 1), NULL, im->w, im->h);
+    env->map = s->envmap;
+    return MCRT_OK;
+}
+
 mcrt_status mc_scene_prepare(struct scene *s, mc_diag *d)
 {
     size_t i;
@@ -107,6 +129,8 @@ mcrt_status mc_scene_prepare(struct scene *s, mc_diag *d)
             s->light_count--;
             break;
         }
+    if (env.image && (st = build_envmap(s, &env, d)) != MCRT_OK)
+        return st;
     has_light = s->light_count > 0 || has_env;
     for (i = 0; i < s->prim_count; i++) {
         struct prim *p = &s->prims[i];

@@ -50,6 +50,15 @@ void mc_scene_free(struct scene *s)
     free(s->normals);
     free(s->lights);
     free(s->motions);
+    while (s->image_count > 0) {
+        s->image_count--;
+        free(s->images[s->image_count].path);
+        free(s->images[s->image_count].rgb);
+    }
+    free(s->images);
+    if (s->envmap)
+        mc_envmap_free(s->envmap);
+    free(s->envmap);
     memset(s, 0, sizeof *s);
 }
 
@@ -93,6 +102,29 @@ int mc_scene_add_normals(struct scene *s, vec3 n0, vec3 n1, vec3 n2)
 int mc_scene_add_light(struct scene *s, const struct light *l)
 {
     return push((void **)&s->lights, &s->light_count, &s->light_cap, sizeof *l, l);
+}
+
+int mc_scene_add_image(struct scene *s, const char *path)
+{
+    struct scene_image im;
+    int i;
+    memset(&im, 0, sizeof im);
+    im.path = mc_malloc(strlen(path) + 1);
+    if (!im.path)
+        return -1;
+    strcpy(im.path, path);
+    i = push((void **)&s->images, &s->image_count, &s->image_cap, sizeof im, &im);
+    if (i < 0)
+        free(im.path);
+    return i;
+}
+
+void mc_scene_set_image(struct scene *s, size_t i, float *rgb, int w, int h)
+{
+    free(s->images[i].rgb);
+    s->images[i].rgb = rgb;
+    s->images[i].w = w;
+    s->images[i].h = h;
 }
 
 int mc_scene_find_material(const struct scene *s, const char *name)

@@ -11,6 +11,7 @@
 #include "core/diag.h"
 #include "geom/bvh.h"
 #include "geom/motion.h"
+#include "light/envmap.h"
 #include "light/light.h"
 #include "sample/alias.h"
 #include "sample/filter.h"   /* enum filter_kind */
@@ -45,6 +46,15 @@ struct integrator_desc {
     float alpha;                     /* the fraction of new photons kept: 2/3 */
 };
 
+/* An image file the scene uses (an environment map): the parser names it, the API layer reads it
+ * (the core reads no image file, src/README) and hands the pixels over with mc_scene_set_image. */
+struct scene_image {
+    char *path;                      /* as opened: under the scene's folder (owned) */
+    float *rgb;                      /* w·h·3 linear floats, rows top to bottom; NULL until set
+                                        (owned, malloc'd) */
+    int w, h;
+};
+
 struct scene {
     struct film_desc film;
     struct camera_desc camera;
@@ -64,6 +74,10 @@ struct scene {
     struct light *lights;            /* as parsed; prepare adds the area lights and puts the
                                         environment (given or the default sky) last */
     size_t light_count, light_cap;
+
+    struct scene_image *images;
+    size_t image_count, image_cap;
+    struct envmap *envmap;           /* the environment's map, built by prepare (or NULL) */
 
     /* Built by mc_scene_prepare: prims[0, static_count) are static, in `bvh`; the moving ones
      * follow, in `motion_bvh`, bounded over the whole shutter. */
@@ -90,6 +104,10 @@ int mc_scene_add_light(struct scene *s, const struct light *l);
 /* A motion, for prims whose `motion` field is the returned index + 1; -1 when out of memory or
  * past 65535 motions. */
 int mc_scene_add_motion(struct scene *s, const struct motion *m);
+/* An image to be read from path (copied); the new image's index, or -1 when out of memory. */
+int mc_scene_add_image(struct scene *s, const char *path);
+/* Give image i its pixels: rgb (w·h·3 floats, malloc'd) becomes the scene's. */
+void mc_scene_set_image(struct scene *s, size_t i, float *rgb, int w, int h);
 /* Index of the material with this name, or -1. */
 int mc_scene_find_material(const struct scene *s, const char *name);
 

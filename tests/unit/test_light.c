@@ -156,7 +156,7 @@ static struct est irradiance_bsdf(const struct scene *s, vec3 p, vec3 n, float t
             mc_scene_surface(s, &r, &h, &sf);
             e = PI * v3_avg(mc_light_emitted(&s->prims[h.prim], &sf));
         } else if (s->env_light >= 0) {
-            e = PI * v3_avg(s->lights[s->env_light].intensity);
+            e = PI * v3_avg(mc_environment_radiance(&s->lights[s->env_light], r.d));
         }
         acc_add(&a, e);
     }
