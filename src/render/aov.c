@@ -58,7 +58,8 @@ void mc_aov_record(struct aov_pixel *p, int half, const struct scene *s, const s
         h.t = ray.tmax;
         if (!mc_scene_intersect(s, &ray, &h)) {
             if (s->env_light >= 0)
-                E = v3_add(E, v3_mul(beta, s->lights[s->env_light].intensity));
+                E = v3_add(E, v3_mul(beta, mc_environment_radiance(&s->lights[s->env_light],
+                                                                   ray.d)));
             break;
         }
         mc_scene_surface(s, &ray, &h, &sf);
