@@ -7,7 +7,7 @@
 #   make check      the tests under AddressSanitizer + UndefinedBehaviorSanitizer (build-san/)
 #   make tsan       a multi-threaded render of every scene under ThreadSanitizer (build-tsan/)
 #   make fuzz       libFuzzer (clang) on the scene parser and the OBJ reader, FUZZ_TIME s each (build-fuzz/)
-#   make bench      BVH, path-tracer and photon-mapping throughput (not a test)
+#   make bench      BVH, path-tracer and photon-mapping throughput, mcrt-mpi's speed-up (not a test)
 #   make bench-error every sampler's error estimate against the truth on every scene, and the
 #                   predicted time to an error against the time taken (minutes; not a test)
 #   make ref        regenerate the POV-Ray references in ref/ (needs povray; not part of make test)
@@ -33,6 +33,9 @@ LDLIBS  = -lpthread -lm
 PKG_CONFIG ?= pkg-config
 HAVE_PNG := $(shell $(PKG_CONFIG) --exists libpng 2>/dev/null && echo 1)
 HAVE_EXR := $(shell $(PKG_CONFIG) --exists OpenEXR 2>/dev/null && echo 1)
+# MPI, for mcrt-mpi only (src/mpi/; the library never sees it): its compiler wrapper.
+MPICC ?= mpicc
+HAVE_MPI := $(shell command -v $(MPICC) >/dev/null 2>&1 && echo 1)
 ifeq ($(HAVE_PNG),1)
 IO_CFLAGS += -DMCRT_HAVE_PNG $(shell $(PKG_CONFIG) --cflags libpng)
 IO_LIBS   += $(shell $(PKG_CONFIG) --libs libpng)
@@ -56,6 +59,7 @@ LDFLAGS = $(LDFLAGS)
 LDLIBS = $(LDLIBS)
 HAVE_PNG = $(HAVE_PNG)
 HAVE_EXR = $(HAVE_EXR)
+HAVE_MPI = $(HAVE_MPI)
 IO_CFLAGS = $(IO_CFLAGS)
 endef
 
@@ -65,7 +69,7 @@ else
 Q = @
 endif
 
-LIB_SRC  := $(filter-out src/cli/%,$(wildcard src/*/*.c))
+LIB_SRC  := $(filter-out src/cli/% src/mpi/%,$(wildcard src/*/*.c))
 CLI_SRC  := $(wildcard src/cli/*.c)
 LIB_OBJ  := $(LIB_SRC:%.c=$(O)/obj/%.o)
 CLI_OBJ  := $(CLI_SRC:%.c=$(O)/obj/%.o)
@@ -76,7 +80,7 @@ TOOL_SRC := $(wildcard tests/tools/*.c)
 TOOL_BIN := $(TOOL_SRC:tests/tools/%.c=$(O)/tests/%)
 
 .PHONY: all run test test-build check tsan fuzz bench bench-error bench-denoise install uninstall clean setup ref plots
-all: $(O)/mcrt $(O)/libmcrt.a
+all: $(O)/mcrt $(O)/libmcrt.a $(if $(HAVE_MPI),$(O)/mcrt-mpi)
 
 # $(O)/config.mk, the CONFIG above, is written while this Makefile is read, and only when its text
 # differs ($(call same,A,B): A and B are equal strings), so that only a change makes it newer than
@@ -96,6 +100,9 @@ endif
 ifneq ($(HAVE_PNG),1)
 $(info mcrt: libpng not found by pkg-config: building without PNG output (apt-get install pkgconf libpng-dev, then make again; make run and make test do it as root))
 endif
+ifneq ($(HAVE_MPI),1)
+$(info mcrt: MPI not found ($(MPICC)): not building mcrt-mpi (apt-get install libopenmpi-dev openmpi-bin, then make again; make run and make test do it as root))
+endif
 ifneq ($(HAVE_EXR),1)
 $(info mcrt: OpenEXR not found by pkg-config: building without EXR output (apt-get install pkgconf libopenexr-dev, then make again; make run and make test do it as root))
 endif
@@ -114,6 +121,16 @@ $(O)/libmcrt.a: $(LIB_OBJ)
 $(O)/mcrt: $(CLI_OBJ) $(O)/libmcrt.a $(CONFIG_MK)
 	@$(if $(Q),echo "  LD      $@")
 	$(Q)$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $(CLI_OBJ) $(O)/libmcrt.a $(LDLIBS)
+
+# mcrt-mpi: compiled and linked by MPI's wrapper, against the library like mcrt.
+$(O)/obj/src/mpi/%.o: src/mpi/%.c $(CONFIG_MK)
+	@mkdir -p $(@D)
+	@$(if $(Q),echo "  MPICC   $<")
+	$(Q)$(MPICC) $(CFLAGS) -c $< -o $@
+
+$(O)/mcrt-mpi: $(O)/obj/src/mpi/main.o $(O)/obj/src/cli/args.o $(O)/libmcrt.a $(CONFIG_MK)
+	@$(if $(Q),echo "  LD      $@")
+	$(Q)$(MPICC) $(CFLAGS) $(LDFLAGS) -o $@ $(O)/obj/src/mpi/main.o $(O)/obj/src/cli/args.o $(O)/libmcrt.a $(LDLIBS)
 
 $(O)/tests/%: tests/unit/%.c tests/t.h tests/prim_util.h $(O)/libmcrt.a $(CONFIG_MK)
 	@mkdir -p $(@D)
@@ -146,7 +163,7 @@ $(O)/tests/%: tests/tools/%.c $(O)/libmcrt.a $(CONFIG_MK)
 # has exrheader and exrmaketiled, which read back what mcrt writes; groff-base lints the manuals
 # and man-db's man shows them (the README's `man -l`). The tests that need what is left out
 # (python3, gnuplot) count as skipped. The README lists the same packages.
-DEBS = pkgconf libpng-dev libopenexr-dev openexr groff-base man-db
+DEBS = pkgconf libpng-dev libopenexr-dev openexr groff-base man-db libopenmpi-dev openmpi-bin
 setup:
 	@if [ "$(SETUP)" = 1 ] && command -v dpkg-query >/dev/null 2>&1; then \
 	  missing=""; for p in $(DEBS); do \
@@ -221,6 +238,7 @@ bench: all $(O)/tests/bench $(O)/tests/bench_render $(O)/tests/bench_sppm
 	$(O)/tests/bench
 	$(O)/tests/bench_render
 	$(O)/tests/bench_sppm
+	MCRT=$(O)/mcrt sh tests/tools/mpi_bench.sh
 
 # Estimated over true relMSE for every sampler at 16, 64 and 256 spp on every scene, and the
 # predicted time to a target error against the time taken (issue 14).
@@ -245,6 +263,7 @@ install: all
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include \
 	  $(DESTDIR)$(PREFIX)/share/man/man1 $(DESTDIR)$(PREFIX)/share/man/man3 $(DESTDIR)$(PREFIX)/share/man/man5
 	install -m 755 $(O)/mcrt $(DESTDIR)$(PREFIX)/bin/mcrt
+	$(if $(HAVE_MPI),install -m 755 $(O)/mcrt-mpi $(DESTDIR)$(PREFIX)/bin/mcrt-mpi)
 	install -m 644 $(O)/libmcrt.a $(DESTDIR)$(PREFIX)/lib/libmcrt.a
 	install -m 644 src/mcrt.h $(DESTDIR)$(PREFIX)/include/mcrt.h
 	install -m 644 man/mcrt.1 $(DESTDIR)$(PREFIX)/share/man/man1/mcrt.1
@@ -255,7 +274,7 @@ install: all
 	  src/mcrt.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/mcrt.pc
 
 uninstall:
-	rm -f $(DESTDIR)$(PREFIX)/bin/mcrt $(DESTDIR)$(PREFIX)/lib/libmcrt.a $(DESTDIR)$(PREFIX)/include/mcrt.h \
+	rm -f $(DESTDIR)$(PREFIX)/bin/mcrt $(DESTDIR)$(PREFIX)/bin/mcrt-mpi $(DESTDIR)$(PREFIX)/lib/libmcrt.a $(DESTDIR)$(PREFIX)/include/mcrt.h \
 	  $(DESTDIR)$(PREFIX)/lib/pkgconfig/mcrt.pc $(DESTDIR)$(PREFIX)/share/man/man1/mcrt.1 \
 	  $(DESTDIR)$(PREFIX)/share/man/man3/libmcrt.3 $(DESTDIR)$(PREFIX)/share/man/man5/mcrt.5
 

@@ -136,6 +136,20 @@ typedef struct mcrt_options {
      * of each pass with either. Deterministic like the passes; a crop is sampled by its own
      * errors, so its pixels differ from the whole image's. */
     int adaptive;
+    /* Render farms (mcrt(1), mcrt-mpi), for the per-ray integrators, not adaptive.
+     * passes > 0: the image is to hold this many passes in all (a resumed state's included),
+     * unless time_budget or target_error stop it first. first_pass: the index of the first
+     * pass in the seed's sequence of passes, so that renders of passes 0 to k-1 and k to n-1
+     * merge (mcrt_merge) into the samples of one render of n. resume: an EXR written with a
+     * render state (save_state) to continue, refused unless it is a render of this scene with
+     * these options and seed; the passes it holds come first, and the result is bit-identical
+     * to one render of the same total passes (without passes, time_budget or target_error: one
+     * pass more). save_state: mcrt_render_save writes the state (each pixel's sums exactly,
+     * the scene's hash, the options and the passes) into the EXR, as it always does with
+     * time_budget or target_error when the image is an EXR. */
+    int passes, first_pass;
+    const char *resume;
+    int save_state;
     /* Nonzero: denoise the image after rendering (NFOR, Bitterli et al. 2016: features of the
      * first non-specular surface prefiltered across the two half buffers, first-order
      * regression of colour on them, candidate filters chosen per pixel by their error estimated
@@ -208,6 +222,16 @@ double mcrt_seconds_to_relmse(const mcrt_stats *st, double relmse);
  * the labels scene and image (NULL: null), in the same all-or-nothing way as mcrt_render_save. */
 mcrt_status mcrt_render_save_stats(mcrt_render *r, const char *path, const char *scene,
                                    const char *image);
+/* The last run's per-pixel sums (a render state's words, for sending to another process) as
+ * *bytes bytes; borrowed like mcrt_render_pixels. NULL when there is no state (before a run, or
+ * an integrator without one). */
+const void *mcrt_render_sums(const mcrt_render *r, size_t *bytes);
+/* Add the sums of another render of the same scene, options and size, holding `passes` passes
+ * from first_pass on, to r's (Chan, Golub and LeVeque 1979), as if r had rendered them after
+ * its own: its pixels, statistics and state follow. When they are r's next passes, the result is
+ * bit-identical to a render of them all in one run. */
+mcrt_status mcrt_render_add_sums(mcrt_render *r, const void *sums, size_t bytes, int first_pass,
+                                 int passes);
 /* The last error on r, "" if none. Owned by r. */
 const char *mcrt_render_error(const mcrt_render *r);
 void mcrt_render_free(mcrt_render *r);
@@ -270,6 +294,19 @@ void mcrt_diff_options_init(mcrt_diff_options *o);
  * error (error_size bytes; NULL to skip). A failed z-test is not an error: see out->ztest_pass. */
 mcrt_status mcrt_diff(const char *test, const char *ref, const mcrt_diff_options *o,
                       mcrt_diff_result *out, size_t out_size, char *error, size_t error_size);
+
+/* ---- Merging renders ---- */
+
+/* Merge the n EXR images with render states (mcrt_options.save_state) at inputs into one
+ * written at output (an EXR with the merged state; written whole or not at all): renders of one
+ * scene and options with other seeds or passes of the same pixels are merged exactly (Chan,
+ * Golub and LeVeque 1979), in the order given, and crops are assembled into the window they
+ * tile. Files of other scenes, options or sizes, crops that overlap without being the same
+ * window or leave a gap, and damaged files are refused: MCRT_ERR_INVALID, or MCRT_ERR_IO for a
+ * file that cannot be read, with "file: what is wrong" in error. The merged image's statistics
+ * (size, spp, passes, est_relmse) go into the first out_size bytes of out (NULL: none). */
+mcrt_status mcrt_merge(const char *const *inputs, int n, const char *output, mcrt_stats *out,
+                       size_t out_size, char *error, size_t error_size);
 
 /* ---- Images ---- */
 

@@ -21,6 +21,7 @@
 #include "io/image.h"
 #include "render/adaptive.h"
 #include "render/render.h"
+#include "render/state.h"
 #include "scene/features.h"
 #include "scene/scene.h"
 
@@ -33,6 +34,7 @@ struct mcrt_scene {
     struct scene s;
     mc_diag err;
     int loaded;
+    uint64_t hash;          /* of the scene's text, for render states (render/state.h) */
     char info[1024];
 };
 
@@ -41,11 +43,16 @@ struct mcrt_render {
     /* The caller's options, with the strings pointing at the copies below, which the render owns:
      * nothing the caller lent is read after mcrt_render_new (but the progress callback's user). */
     mcrt_options opt;
-    char *integrator, *sampler, *aovs;
+    char *integrator, *sampler, *aovs, *resume;
     size_t given_size;      /* the caller's opt.size; opt.size is 0 when it was refused */
     struct film film;
     struct aov_film aov;    /* first-hit layers, when opt.aovs asks for any */
     float *rgb;
+    /* What the film is a render of, when it can be saved and continued (has_state). */
+    struct render_state state;
+    int has_state;
+    uint32_t *sums;         /* the film as state words, made by mcrt_render_sums */
+    int sums_current;       /* whether sums holds the film as it is */
     float *raw;             /* the image before denoising, with opt.denoise */
     mc_atomic_int cancel;
     mcrt_stats stats;
@@ -112,6 +119,7 @@ static mcrt_status load(mcrt_scene *s, const char *text, size_t len, const char 
     s->err.msg[0] = '\0';
     if (mc_scene_init(&s->s) != 0)
         st = mc_fail(&s->err, MCRT_ERR_NOMEM, "%s: out of memory", name);
+    s->hash = mc_state_hash(text, len);
     if (st == MCRT_OK)
         st = mc_scene_parse(&s->s, text, len, name, base_dir, &s->err);
     if (st == MCRT_OK)
@@ -218,7 +226,7 @@ mcrt_render *mcrt_render_new(const mcrt_scene *s, const mcrt_options *o)
         r->opt.size = mc_sized_read(&r->opt, sizeof r->opt, o, o->size) ? sizeof r->opt : 0;
     }
     if (!own_string(&r->opt.integrator, &r->integrator) || !own_string(&r->opt.sampler, &r->sampler)
-        || !own_string(&r->opt.aovs, &r->aovs)) {
+        || !own_string(&r->opt.aovs, &r->aovs) || !own_string(&r->opt.resume, &r->resume)) {
         mcrt_render_free(r);
         return NULL;
     }
@@ -236,6 +244,8 @@ void mcrt_render_free(mcrt_render *r)
     free(r->integrator);
     free(r->sampler);
     free(r->aovs);
+    free(r->resume);
+    free(r->sums);
     free(r);
 }
 
@@ -392,6 +402,23 @@ static mcrt_status settings(const mcrt_render *r, struct render_settings *rs,
     }
     if (!(o->time_budget >= 0.0) || !(o->target_error >= 0.0))
         return mc_fail(d, MCRT_ERR_INVALID, "time_budget and target_error must be >= 0");
+    if (o->passes < 0 || o->first_pass < 0 || o->passes > MAX_SPP / rs->spp ||
+        o->first_pass > INT32_MAX - MAX_SPP)
+        return mc_fail(d, MCRT_ERR_INVALID, "passes must be between 1 and %d, first_pass >= 0",
+                       MAX_SPP / rs->spp);
+    if ((o->passes || o->first_pass || o->resume || o->save_state) && !(*it)->radiance)
+        return mc_fail(d, MCRT_ERR_INVALID,
+                       "the %s integrator keeps no render state (passes, resume and merge need a "
+                       "per-ray integrator)",
+                       mc_integrator_names[method]);
+    if ((o->passes || o->first_pass || o->resume) && o->adaptive)
+        return mc_fail(d, MCRT_ERR_INVALID,
+                       "passes, first_pass and resume do not work with adaptive sampling");
+    /* The state holds the film, not the first-hit layers, which would then miss the passes
+     * done before. */
+    if (o->resume && first_hit_aovs(o->aovs))
+        return mc_fail(d, MCRT_ERR_INVALID,
+                       "resume keeps only the film: no albedo, normal or depth layers");
     return check_aovs(o->aovs, d);
 }
 
@@ -447,6 +474,65 @@ static mcrt_status denoise_render(mcrt_render *r, int threads, double *est)
     return st;
 }
 
+/* What r's film will be a render of (render/state.h), for its state. */
+static void identify(mcrt_render *r, const struct render_settings *rs, int w, int h)
+{
+    const struct scene *s = &r->scene->s;
+    struct render_state *id = &r->state;
+    memset(id, 0, sizeof *id);
+    id->scene = r->scene->hash;
+    id->width = s->film.width;
+    id->height = s->film.height;
+    id->crop[0] = rs->crop_x0;
+    id->crop[1] = rs->crop_y0;
+    id->crop[2] = rs->crop_x0 + w;
+    id->crop[3] = rs->crop_y0 + h;
+    id->spp = rs->spp;
+    snprintf(id->integrator, sizeof id->integrator, "%s",
+             r->opt.integrator ? r->opt.integrator : mc_integrator_names[s->integrator.method]);
+    snprintf(id->sampler, sizeof id->sampler, "%s", mc_sampler_names[rs->sampler]);
+    id->all_features = r->opt.all_features != 0;
+    id->adaptive = rs->adaptive;
+    id->pooled = r->film.pooled;
+    id->seed = rs->seed;
+    id->first_pass = rs->first_pass;
+}
+
+/* Load the state at r->opt.resume into r's film, when it is a render of what r renders. */
+static mcrt_status resume(mcrt_render *r, struct render_settings *rs)
+{
+    struct image_words words = {MC_STATE_NAME, MC_STATE_WORDS, NULL, NULL};
+    struct render_state got;
+    const char *path = r->opt.resume, *why = NULL;
+    char *text;
+    int w, h;
+    mcrt_status st = mc_image_read_words(path, &words, &text, &w, &h, &r->err);
+    if (st != MCRT_OK) /* a state that cannot be read is bad input, as a bad option is */
+        return st == MCRT_ERR_IO ? MCRT_ERR_INVALID : st;
+    if (mc_state_parse(text, &got, &why) == 0 && mc_state_same_render(&r->state, &got, &why)) {
+        if (got.merged)
+            why = "a merge of several renders, which no render continues";
+        else if (got.seed != r->state.seed)
+            why = "another --seed";
+        else if (memcmp(got.crop, r->state.crop, sizeof got.crop) != 0)
+            why = "another --crop";
+        else if (w != r->film.width || h != r->film.height)
+            why = "an image whose size is not its state's";
+        else if (rs->passes && rs->passes <= got.passes)
+            why = "more passes than --passes asks for in all";
+    }
+    free(text);
+    if (why) {
+        free(words.data);
+        return mc_fail(&r->err, MCRT_ERR_INVALID, "%s: cannot resume: %s", path, why);
+    }
+    mc_state_unpack(&r->film, words.data);
+    free(words.data);
+    rs->first_pass = r->state.first_pass = got.first_pass;
+    rs->done_passes = got.passes;
+    return MCRT_OK;
+}
+
 mcrt_status mcrt_render_run(mcrt_render *r)
 {
     struct render_settings rs;
@@ -471,7 +557,10 @@ mcrt_status mcrt_render_run(mcrt_render *r)
     mc_film_free(&r->film);
     free(r->rgb);
     free(r->raw);
+    free(r->sums);
     r->rgb = r->raw = NULL;
+    r->sums = NULL;
+    r->sums_current = 0;
     w = r->opt.crop_x1 ? r->opt.crop_x1 - r->opt.crop_x0 : s->film.width;
     h = r->opt.crop_y1 ? r->opt.crop_y1 - r->opt.crop_y0 : s->film.height;
     n = (size_t)w * (size_t)h;
@@ -490,12 +579,21 @@ mcrt_status mcrt_render_run(mcrt_render *r)
     rs.target_error = r->opt.target_error;
     rs.max_passes = MAX_SPP / rs.spp;
     rs.adaptive = r->opt.adaptive != 0;
+    rs.passes = r->opt.passes;
+    rs.first_pass = r->opt.first_pass;
+    rs.done_passes = 0;
+    identify(r, &rs, w, h);
+    r->has_state = 0;
+    if (r->opt.resume && (st = resume(r, &rs)) != MCRT_OK)
+        return st;
     if (it->prepare && (st = it->prepare(it, s, &rs, &state, &r->err)) != MCRT_OK)
         return st;
     res.est_relmse_bias2 = res.est_relmse_variance = NAN;
     st = it->render(it, state, s, &rs, &r->film, &res, &r->err);
     if (it->release)
         it->release(state);
+    r->state.passes = res.passes;
+    r->has_state = it->radiance && res.passes > 0;
     mc_film_resolve(&r->film, r->rgb);
     r->stats.width = w;
     r->stats.height = h;
@@ -542,7 +640,7 @@ const float *mcrt_render_pixels(const mcrt_render *r, int *width, int *height)
 
 /* The image and the layers named in opt.aovs, in the order of mc_aov_names; the film's layers are
  * computed here, as only saving needs them. The halves are two layers, A and B. */
-static mcrt_status save_layers(mcrt_render *r, const char *path)
+static mcrt_status save_layers(mcrt_render *r, const char *path, const struct image_words *words)
 {
     struct image_layer layers[2 + AOV_COUNT + 1 + DENOISE_IMAGES];
     char names[2 * DENOISE_LAYERS][32];
@@ -594,9 +692,29 @@ static mcrt_status save_layers(mcrt_render *r, const char *path)
         layers[n].name = MC_DENOISE_EMISSION_VAR;
         layers[n++].rgb = evar;
     }
-    st = mc_image_write_layers(path, layers, n, r->film.width, r->film.height, &r->err);
+    st = mc_image_write_words(path, layers, n, words, r->film.width, r->film.height, &r->err);
     free(buf);
     return st;
+}
+
+/* Whether path names an EXR file. */
+static int is_exr(const char *path)
+{
+    const char *slash = strrchr(path, '/'), *dot = strrchr(slash ? slash + 1 : path, '.');
+    return dot && (strcmp(dot, ".exr") == 0 || strcmp(dot, ".EXR") == 0);
+}
+
+/* r->sums: the film as state words; -1 when out of memory. */
+static int pack_sums(mcrt_render *r)
+{
+    size_t n = (size_t)r->film.width * (size_t)r->film.height * MC_STATE_WORDS;
+    if (r->sums_current)
+        return 0;
+    if (!r->sums && !(r->sums = mc_malloc(n * sizeof *r->sums)))
+        return -1;
+    mc_state_pack(&r->film, r->sums);
+    r->sums_current = 1;
+    return 0;
 }
 
 mcrt_status mcrt_render_save(mcrt_render *r, const char *path)
@@ -607,10 +725,74 @@ mcrt_status mcrt_render_save(mcrt_render *r, const char *path)
         return mc_fail(&r->err, MCRT_ERR_INVALID, "mcrt_render_save: path is NULL");
     if (!r->rgb)
         return mc_fail(&r->err, MCRT_ERR_INVALID, "nothing rendered yet");
+    if (r->opt.save_state && !is_exr(path))
+        return mc_fail(&r->err, MCRT_ERR_INVALID, "cannot write '%s': a render state needs an EXR",
+                       path);
+    /* The state goes with every EXR of a limited render, which a user may want to go on with. */
+    if (r->has_state && is_exr(path) &&
+        (r->opt.save_state || r->opt.time_budget > 0.0 || r->opt.target_error > 0.0)) {
+        char text[1024];
+        struct image_words words = {MC_STATE_NAME, MC_STATE_WORDS, text, NULL};
+        if (pack_sums(r) != 0)
+            return mc_fail(&r->err, MCRT_ERR_NOMEM, "out of memory for the render state");
+        words.data = r->sums;
+        mc_state_format(&r->state, text, sizeof text);
+        return save_layers(r, path, &words);
+    }
     /* A denoised render keeps its raw image and inputs in an EXR; other formats get the image. */
-    if (r->opt.aovs || (r->raw && mc_image_layered(path)))
-        return save_layers(r, path);
+    if (r->opt.aovs || (r->raw && is_exr(path)))
+        return save_layers(r, path, NULL);
     return mc_image_write(path, r->rgb, r->film.width, r->film.height, &r->err);
+}
+
+const void *mcrt_render_sums(const mcrt_render *r, size_t *bytes)
+{
+    mcrt_render *w = (mcrt_render *)r; /* the words are a cache of the film, made on demand */
+    if (bytes)
+        *bytes = 0;
+    if (!r || !r->has_state || pack_sums(w) != 0)
+        return NULL;
+    if (bytes)
+        *bytes = (size_t)r->film.width * (size_t)r->film.height * MC_STATE_WORDS * 4;
+    return r->sums;
+}
+
+mcrt_status mcrt_render_add_sums(mcrt_render *r, const void *sums, size_t bytes, int first_pass,
+                                 int passes)
+{
+    struct film more;
+    size_t n;
+    uint64_t lo, hi;
+    int i;
+    if (!r)
+        return MCRT_ERR_INVALID;
+    n = (size_t)r->film.width * (size_t)r->film.height;
+    if (!r->has_state || !sums || bytes != n * MC_STATE_WORDS * 4 || passes < 1 || first_pass < 0)
+        return mc_fail(&r->err, MCRT_ERR_INVALID,
+                       "mcrt_render_add_sums: %s", !r->has_state ? "no render state to add to"
+                                                   : "sums of another size, or no passes");
+    if (mc_film_init(&more, r->film.width, r->film.height) != 0)
+        return mc_fail(&r->err, MCRT_ERR_NOMEM, "out of memory for a %dx%d film", r->film.width,
+                       r->film.height);
+    mc_state_unpack(&more, sums);
+    mc_film_merge(&r->film, &more);
+    mc_film_free(&more);
+    r->sums_current = 0;
+    /* Passes right after r's continue its sequence; any others make a merge. */
+    if (first_pass != r->state.first_pass + r->state.passes)
+        r->state.merged = 1;
+    r->state.passes += passes;
+    mc_film_resolve(&r->film, r->rgb);
+    r->stats.passes = r->state.passes;
+    mc_adaptive_count_range(&r->film, &lo, &hi);
+    r->stats.spp = (int)(lo + hi) / 2;
+    r->stats.spp_min = (int)lo;
+    r->stats.spp_max = (int)hi;
+    r->stats.est_relmse = mc_film_est_relmse(&r->film);
+    r->stats.efficiency = 1.0 / (r->stats.est_relmse * r->stats.seconds);
+    for (i = 0; i < 3; i++)
+        r->stats.seconds_to_relmse[i] = mcrt_seconds_to_relmse(&r->stats, pow(10.0, -2.0 - i));
+    return MCRT_OK;
 }
 
 mcrt_status mcrt_render_save_stats(mcrt_render *r, const char *path, const char *scene,

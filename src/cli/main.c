@@ -16,6 +16,7 @@
 #include "cli/converge.h"
 #include "cli/denoise.h"
 #include "cli/diff.h"
+#include "cli/merge.h"
 #include "mcrt.h"
 
 /* The help, in three parts around the lines that list the library's names (print_usage). */
@@ -25,6 +26,7 @@ static const char usage[] =
     "       mcrt pov SCENE [-o FILE]   (export for POV-Ray; see mcrt pov --help)\n"
     "       mcrt diff [options] TEST REF   (compare images; see mcrt diff --help)\n"
     "       mcrt converge [options] SCENE  (error against time; see mcrt converge --help)\n"
+    "       mcrt merge A.exr B.exr ... -o OUT.exr  (merge render states; see mcrt merge --help)\n"
     "Render the scene file SCENE (see mcrt(5)) and write the image; or, with info, print the\n"
     "features the scene uses, the sample dimensions one path draws and the memory it needs.\n"
     "\n"
@@ -53,6 +55,13 @@ static const char usage_after_aov[] =
     "                      is at most E; the progress bar shows the predicted time to it\n"
     "  --adaptive          after a uniform first pass, give each pixel samples in proportion\n"
     "                      to its estimated error; --spp is then the mean per pixel\n"
+    "  --passes N          render N passes of --spp samples in all (with --resume's)\n"
+    "  --first-pass K      start at pass K of the seed's passes, for renders that mcrt merge\n"
+    "                      combines into the samples of one (machines sharing a render)\n"
+    "  --state             keep the render's state in the EXR image (as --time and\n"
+    "                      --target-error always do), for --resume and mcrt merge\n"
+    "  --resume FILE.exr   go on from FILE's state: the image is bit-identical to one render\n"
+    "                      of the same passes; refused for another scene, options or seed\n"
     "  --denoise           denoise the image (NFOR, from the two half buffers and the first\n"
     "                      non-specular surface's albedo, normal, depth and emission); an EXR\n"
     "                      also gets the raw image (layer raw) and the denoiser's inputs\n";
@@ -255,7 +264,8 @@ static void progress_clear(struct progress *p)
 
 enum { OPT_OUTPUT, OPT_SPP, OPT_THREADS, OPT_SEED, OPT_INTEGRATOR, OPT_ALL_FEATURES, OPT_STATS,
        OPT_QUIET, OPT_HELP, OPT_VERSION, OPT_AOV, OPT_CROP, OPT_TIME, OPT_TARGET_ERROR,
-       OPT_ADAPTIVE, OPT_SAMPLER, OPT_LIST, OPT_DENOISE, OPT_END };
+       OPT_ADAPTIVE, OPT_SAMPLER, OPT_LIST, OPT_PASSES, OPT_FIRST_PASS, OPT_STATE, OPT_RESUME,
+       OPT_DENOISE, OPT_END };
 static const struct arg_spec render_options[OPT_END + 1] = {
     [OPT_OUTPUT] = {NULL, 'o', 1},        [OPT_SPP] = {"spp", 0, 1},
     [OPT_THREADS] = {"threads", 0, 1},    [OPT_SEED] = {"seed", 0, 1},
@@ -266,12 +276,14 @@ static const struct arg_spec render_options[OPT_END + 1] = {
     [OPT_CROP] = {"crop", 0, 1},          [OPT_TIME] = {"time", 0, 1},
     [OPT_TARGET_ERROR] = {"target-error", 0, 1}, [OPT_ADAPTIVE] = {"adaptive", 0, 0},
     [OPT_SAMPLER] = {"sampler", 0, 1},    [OPT_LIST] = {"list", 0, 1},
+    [OPT_PASSES] = {"passes", 0, 1},      [OPT_FIRST_PASS] = {"first-pass", 0, 1},
+    [OPT_STATE] = {"state", 0, 0},        [OPT_RESUME] = {"resume", 0, 1},
     [OPT_DENOISE] = {"denoise", 0, 0},
     [OPT_END] = {NULL, 0, 0}};
 
 struct render_args {
-    const char *scene, *output, *stats, *integrator, *aovs, *sampler;
-    int spp, threads, quiet, all_features, adaptive, denoise;
+    const char *scene, *output, *stats, *integrator, *aovs, *sampler, *resume;
+    int spp, threads, quiet, all_features, adaptive, passes, first_pass, state, denoise;
     int crop[4];                      /* x0, y0, x1, y1; all 0 = none */
     double time_budget, target_error; /* 0 = none */
     uint64_t seed;
@@ -347,6 +359,20 @@ static int parse_render_args(int argc, char **argv, struct render_args *a)
             if (!mc_args_name("sampler", "sampler", v))
                 return STATUS_USAGE;
             a->sampler = v;
+            break;
+        case OPT_PASSES:
+            if (!mc_args_int("passes", v, 1, 2147483647, &a->passes))
+                return STATUS_USAGE;
+            break;
+        case OPT_FIRST_PASS:
+            if (!mc_args_int("first-pass", v, 0, 2147483647, &a->first_pass))
+                return STATUS_USAGE;
+            break;
+        case OPT_STATE:
+            a->state = 1;
+            break;
+        case OPT_RESUME:
+            a->resume = v;
             break;
         case OPT_QUIET:
             a->quiet = 1;
@@ -449,6 +475,10 @@ static int render(const struct render_args *a, const char *output)
     o.adaptive = a->adaptive;
     o.denoise = a->denoise;
     o.sampler = a->sampler;
+    o.passes = a->passes;
+    o.first_pass = a->first_pass;
+    o.resume = a->resume;
+    o.save_state = a->state;
     if (!a->quiet && isatty(STDERR_FILENO)) {
         prog.start = now();
         prog.last_draw = 0.0;
@@ -488,7 +518,7 @@ static int render(const struct render_args *a, const char *output)
     }
     /* Progressive renders say how many passes ran; adaptive ones how far the pixels' samples
      * spread (spp is then their mean). */
-    if (a->time_budget > 0.0 || a->target_error > 0.0 || st.adaptive)
+    if (a->time_budget > 0.0 || a->target_error > 0.0 || a->passes || a->resume || st.adaptive)
         snprintf(passes, sizeof passes, ", %d pass%s%s", st.passes, st.passes == 1 ? "" : "es",
                  st.adaptive ? ", adaptive" : "");
     if (st.adaptive)
@@ -541,8 +571,9 @@ static int cmd_render(int argc, char **argv)
     /* Everything that can be known to fail is checked before the render, not after it. */
     if (!check_output(output) || !check_folder(output) || (a.stats && !check_folder(a.stats)))
         code = STATUS_USAGE;
-    else if (a.aovs && strcasecmp(suffix_of(output), "exr") != 0) {
-        fprintf(stderr, "mcrt: --aov needs an EXR image, not '%s'\n", output);
+    else if ((a.aovs || a.state) && strcasecmp(suffix_of(output), "exr") != 0) {
+        fprintf(stderr, "mcrt: --%s needs an EXR image, not '%s'\n", a.aovs ? "aov" : "state",
+                output);
         code = STATUS_USAGE;
     }
     else if (same_file(a.scene, output) || (a.stats && same_file(a.scene, a.stats))) {
@@ -664,7 +695,7 @@ static int cmd_pov(int argc, char **argv)
 static const struct command {
     const char *name;
     int (*run)(int argc, char **argv);
-} commands[] = {{"render", cmd_render}, {"info", cmd_info}, {"pov", cmd_pov}, {"diff", mc_cli_diff}, {"converge", mc_cli_converge},
+} commands[] = {{"render", cmd_render}, {"info", cmd_info}, {"pov", cmd_pov}, {"diff", mc_cli_diff}, {"converge", mc_cli_converge}, {"merge", mc_cli_merge},
                 {"denoise", mc_cli_denoise}};
 
 int main(int argc, char **argv)

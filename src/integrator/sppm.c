@@ -79,18 +79,18 @@ struct sppm_pixel {
     double n;          /* N */
     double r;          /* the radius R */
     double phi[3];     /* this pass: Σ β_photon·f over the photons it received */
-    double phi_in[3];  /* the same over those within R/√2 */
+    double phi_lap[3]; /* this pass: Σ β_photon·f·(6s² − 3), s = distance / R (see pixel_value) */
     uint64_t m;        /* this pass: photons received */
     /* For the error estimate, per group of passes (pass_group): Σ Y_j, the passes' own
-     * estimates, and Σ D_j, D_j = Y_j − (Y_j gathered within R/√2), for the bias. */
-    double ysum[SPPM_GROUPS][3], dsum[SPPM_GROUPS][3];
+     * estimates, and Σ B_j, their estimated biases. */
+    double ysum[SPPM_GROUPS][3], bsum[SPPM_GROUPS][3];
 };
 
 struct deposit {
-    uint32_t vp;       /* the visible point; its top bit: within R/√2 of it (DEPOSIT_INNER) */
+    uint32_t vp;       /* the visible point */
     float phi[3];
+    float lap;         /* 6s² − 3, s = the distance over the point's radius */
 };
-#define DEPOSIT_INNER 0x80000000u
 
 struct chunk {
     struct deposit *d;
@@ -342,7 +342,7 @@ static void camera_tile(void *ctx, struct tile_worker *w, int x0, int y0, int x1
 
 /* ---- the photon pass ---- */
 
-static int record(struct chunk *ch, uint32_t vp, vec3 phi)
+static int record(struct chunk *ch, uint32_t vp, vec3 phi, float lap)
 {
     if (ch->n == ch->cap) {
         size_t cap = ch->cap ? 2 * ch->cap : 1024;
@@ -358,6 +358,7 @@ static int record(struct chunk *ch, uint32_t vp, vec3 phi)
     ch->d[ch->n].phi[0] = phi.x;
     ch->d[ch->n].phi[1] = phi.y;
     ch->d[ch->n].phi[2] = phi.z;
+    ch->d[ch->n].lap = lap;
     ch->n++;
     return 0;
 }
@@ -381,8 +382,9 @@ static void deposit(const struct pass_ctx *c, struct chunk *ch, vec3 p, vec3 wi,
             continue; /* from behind a surface that only reflects (Mitsuba #145) */
         if (c->cfg->max_depth >= 0 && v->depth + hits > c->cfg->max_depth)
             continue;
-        record(ch, i | ((double)v3_dot(d, d) <= 0.5 * r * r ? DEPOSIT_INNER : 0u), v3_mul(beta, mc_bsdf_eval(&v->b, v->wo, frame_to_local(&v->fr, wi),
-                                                MC_RADIANCE)));
+        record(ch, i,
+               v3_mul(beta, mc_bsdf_eval(&v->b, v->wo, frame_to_local(&v->fr, wi), MC_RADIANCE)),
+               (float)(6.0 * (double)v3_dot(d, d) / (r * r) - 3.0));
     }
 }
 
@@ -559,22 +561,27 @@ static void state_free(struct sppm_state *st)
  * sampler; more groups estimate better still but stratify each group's camera samples less
  * (cornell's true relMSE at 64 passes grew 1.3–1.6× from 2 groups to 4).
  *
- * Bias, without a reference, in the spirit of Hachisuka, Jarosz and Jensen 2010 (who estimate
- * the radiance's Laplacian over the kernel): where the radiance is smooth over the disk, a disk
- * of radius r gathers L + r²ΔL/8 in expectation (the disk's second moment r²/4 per axis), so a
- * pass's Y_j minus the same pass gathered within R/√2 is D_j ≈ R²ΔL/16, half the pass's bias.
- * The estimate's bias is then b ≈ 2·ΣD_j/k, measured on the same photons. Its square is taken
- * less its own noise (the variance of 2·mean D_j, from the halves as for Y), which leaves b²
- * unbiased where b is small but may make it negative: only the sum bias² + variance is kept
+ * Bias, without a reference, as Hachisuka, Jarosz and Jensen 2010 estimate it: where the
+ * radiance is smooth to second order over the disk, a disk of radius R gathers L + R²ΔL/8 in
+ * expectation (its second moment is R²/4 per axis), and ΔL is estimated from the same photons by
+ * the Laplacian of a smooth kernel, the biweight K(s) = (3/π)(1 − s²)² (Silverman 1986), whose
+ * ΔK_R = (3/π)(16s² − 8)/R⁴ for s = distance/R: the pass's bias is then
+ * B_j = R²ΔL̂/8 = β·Σ_p Φ_p·(6s_p² − 3) / (photons·πR²) (the weight 6s² − 3 integrates to 0 over
+ * the disk: a flat density has no bias). The estimate's bias is b = mean B_j; its square is
+ * taken less its own noise (the variance of that mean, from the groups as for Y), which leaves
+ * b² unbiased where b is small but may make it negative: only the sum bias² + variance is kept
  * from going below 0, so that the image's mean over pixels stays close to unbiased. (Clamping
  * each b² at 0 overestimated the relMSE 2.4× at 256 passes on a 24² cornell; pooling b over
- * 3×3 pixels underestimated it 3× on the caustics of cornell-spheres.) Against the truth (32²
- * cornell-spheres, 4 seeds, bias² = the true MSE less the seeds' spread) it reads 0.49–0.53 of
- * bias² at 64 passes and 0.61–0.66 at 256: at edges and caustic boundaries the bias is first
- * order in R and D_j is 0.29 of it, not 1/2. A third radius, R/2, fitting the order per pixel
- * (Aitken's Δ²: bias = D·1/(1 − ΣD'/ΣD), the ratio held to [1/2, 1/√2]) read 0.73–0.89 there,
- * but its noise, through the clamp of bias² + variance at 0, took cornell's total to 2.0× the
- * truth: not kept. */
+ * 3×3 pixels underestimated it 3× on the caustics of cornell-spheres.)
+ *
+ * Measured against the truth (32², 4 seeds, bias² = the true MSE less the seeds' spread), it
+ * reads 0.46–0.63 of bias² on cornell-spheres at 64 and 256 passes: at edges and caustic
+ * boundaries the bias is first order in R, which a second-order estimate misses. A finite
+ * difference of two radii (what R gathers against R/√2: the same expectation under the same
+ * assumption) read the same, 0.49–0.66, with more noise (its weight ±2 has second moment 4
+ * against 3), which put cornell's total at 1.3–1.7× the truth against 1.1–1.5× with the kernel;
+ * a third radius, R/2, fitting the order per pixel (Aitken's Δ²) read 0.73–0.89 of bias² but its
+ * noise, through the clamp at 0, took cornell's total to 2.0×. */
 static vec3 pixel_value(const struct sppm_state *st, size_t i, int passes, double *mse,
                         double *bias2)
 {
@@ -584,20 +591,19 @@ static vec3 pixel_value(const struct sppm_state *st, size_t i, int passes, doubl
     for (ch = 0; ch < 3; ch++) {
         v[ch] = q->ld[ch] / k + q->tau[ch] / (np * area);
         if (passes >= 2) {
-            double ym = 0.0, dm = 0.0, sy = 0.0, sd = 0.0, b, b2, var;
+            double ym = 0.0, b = 0.0, sy = 0.0, sb = 0.0, b2, var;
             for (g = 0; g < groups; g++) {
                 ym += q->ysum[g][ch] / k;
-                dm += q->dsum[g][ch] / k;
+                b += q->bsum[g][ch] / k;
             }
             for (g = 0; g < groups; g++) { /* the between-groups sums of squares */
                 double ng = group_passes(passes, g);
-                double ey = q->ysum[g][ch] / ng - ym, ed = q->dsum[g][ch] / ng - dm;
+                double ey = q->ysum[g][ch] / ng - ym, eb = q->bsum[g][ch] / ng - b;
                 sy += ng * ey * ey;
-                sd += ng * ed * ed;
+                sb += ng * eb * eb;
             }
             var = sy / ((groups - 1) * k);
-            b = 2.0 * dm;
-            b2 = b * b - 4.0 * sd / ((groups - 1) * k);
+            b2 = b * b - sb / ((groups - 1) * k);
             mse[ch] = var + b2 > 0.0 ? var + b2 : 0.0;
             if (bias2)
                 bias2[ch] = b2;
@@ -634,15 +640,13 @@ static void update(struct sppm_state *st, const struct integrator_desc *cfg, int
     for (k = 0; k < st->nchunks; k++) {
         const struct chunk *ch = &st->chunks[k];
         for (i = 0; i < ch->n; i++) {
-            struct sppm_pixel *q = &st->px[ch->d[i].vp & ~DEPOSIT_INNER];
+            struct sppm_pixel *q = &st->px[ch->d[i].vp];
             q->phi[0] += ch->d[i].phi[0];
             q->phi[1] += ch->d[i].phi[1];
             q->phi[2] += ch->d[i].phi[2];
-            if (ch->d[i].vp & DEPOSIT_INNER) {
-                q->phi_in[0] += ch->d[i].phi[0];
-                q->phi_in[1] += ch->d[i].phi[1];
-                q->phi_in[2] += ch->d[i].phi[2];
-            }
+            q->phi_lap[0] += ch->d[i].phi[0] * ch->d[i].lap;
+            q->phi_lap[1] += ch->d[i].phi[1] * ch->d[i].lap;
+            q->phi_lap[2] += ch->d[i].phi[2] * ch->d[i].lap;
             q->m++;
         }
     }
@@ -653,10 +657,10 @@ static void update(struct sppm_state *st, const struct integrator_desc *cfg, int
         double area = MC_PI * q->r * q->r;
         int ch;
         for (ch = 0; ch < 3; ch++) {
-            /* This pass's own estimate Y_j and D_j, into its group's sums. */
+            /* This pass's own estimate Y_j and its bias B_j, into its group's sums. */
             q->ysum[group][ch] += ld[ch] + (q->m ? b[ch] * q->phi[ch] / (np * area) : 0.0);
             if (q->m)
-                q->dsum[group][ch] += b[ch] * (q->phi[ch] - 2.0 * q->phi_in[ch]) / (np * area);
+                q->bsum[group][ch] += b[ch] * q->phi_lap[ch] / (np * area);
             q->ld[ch] += ld[ch];
         }
         if (q->m > 0) {
@@ -668,7 +672,7 @@ static void update(struct sppm_state *st, const struct integrator_desc *cfg, int
             q->r = r1;
         }
         q->phi[0] = q->phi[1] = q->phi[2] = 0.0;
-        q->phi_in[0] = q->phi_in[1] = q->phi_in[2] = 0.0;
+        q->phi_lap[0] = q->phi_lap[1] = q->phi_lap[2] = 0.0;
         q->m = 0;
     }
 }

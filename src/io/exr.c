@@ -1,6 +1,7 @@
 /* exr.c: OpenEXR through its C library, OpenEXRCore: writes scanline float R, G, B and named
- * layers (LAYER.R/G/B); reads the R, G, B (or the first or a named LAYER.R/G/B) half or float
- * channels of a scanline file's first part. */
+ * layers (LAYER.R/G/B), and exact words beside them (UINT channels and a string attribute);
+ * reads the R, G, B (or the first or a named LAYER.R/G/B) half or float channels of a scanline
+ * file's first part, or its words. */
 #include "io/formats.h"
 #include "core/alloc.h"
 
@@ -156,20 +157,32 @@ static const float *channel_source(const char *channel, const struct image_layer
     return layers[0].rgb; /* not reached: exr_write added only the layers' channels */
 }
 
-/* Encode the layers chunk by chunk (16 scanlines per ZIP chunk). The library's pack step gathers
- * each channel from our interleaved rows through the pixel and line strides. */
-/* Our side of a channel in an encode or decode pipeline: one component of float RGB triples, a
- * row of w pixels after another. */
-static void set_rgb_layout(exr_coding_channel_info_t *ch, size_t w)
+/* Our side of a channel in an encode or decode pipeline: element k of `count` 4-byte elements per
+ * pixel (float R, G, B, or a state's words), a row of w pixels after another. */
+static void set_layout(exr_coding_channel_info_t *ch, size_t w, int count, exr_pixel_type_t type)
 {
-    ch->user_pixel_stride = 3 * (int32_t)sizeof(float);
-    ch->user_line_stride = 3 * (int32_t)(sizeof(float) * w);
-    ch->user_bytes_per_element = (int16_t)sizeof(float);
-    ch->user_data_type = EXR_PIXEL_FLOAT;
+    ch->user_pixel_stride = count * 4;
+    ch->user_line_stride = (int32_t)((size_t)count * 4 * w);
+    ch->user_bytes_per_element = 4;
+    ch->user_data_type = (uint16_t)type;
 }
 
+/* Whether channel is "NAME.KK" of words (two digits), with *k the KK. */
+static int word_channel(const char *channel, const struct image_words *words, int *k)
+{
+    size_t len = strlen(words->name);
+    const char *p = channel + len + 1;
+    if (strncmp(channel, words->name, len) != 0 || channel[len] != '.' || strlen(p) != 2 ||
+        p[0] < '0' || p[0] > '9' || p[1] < '0' || p[1] > '9')
+        return 0;
+    *k = (p[0] - '0') * 10 + (p[1] - '0');
+    return *k < words->per_pixel;
+}
+
+/* Encode the layers (and words) chunk by chunk (16 scanlines per ZIP chunk). The library's pack
+ * step gathers each channel from our interleaved rows through the pixel and line strides. */
 static exr_result_t encode_pixels(exr_context_t ctx, const struct image_layer *layers, int n,
-                                  int w, int h)
+                                  const struct image_words *words, int w, int h)
 {
     exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
     exr_chunk_info_t cinfo;
@@ -190,10 +203,17 @@ static exr_result_t encode_pixels(exr_context_t ctx, const struct image_layer *l
             /* The file lists channels alphabetically (B, G, R, variance.B, ...); our pixels are
              * R, G, B per layer. */
             int k;
+            if (words && word_channel(ch->channel_name, words, &k)) {
+                ch->encode_from_ptr = (const uint8_t *)(words->data +
+                                                        (size_t)cinfo.start_y * (size_t)w *
+                                                            (size_t)words->per_pixel + (size_t)k);
+                set_layout(ch, (size_t)w, words->per_pixel, EXR_PIXEL_UINT);
+                continue;
+            }
             const float *rgb = channel_source(ch->channel_name, layers, n, &k);
             ch->encode_from_ptr =
                 (const uint8_t *)(rgb + (size_t)cinfo.start_y * (size_t)w * 3 + (size_t)k);
-            set_rgb_layout(ch, (size_t)w);
+            set_layout(ch, (size_t)w, 3, EXR_PIXEL_FLOAT);
         }
         if (!started)
             rv = exr_encoding_choose_default_routines(ctx, 0, &enc);
@@ -206,8 +226,8 @@ static exr_result_t encode_pixels(exr_context_t ctx, const struct image_layer *l
     return rv;
 }
 
-mcrt_status mc_exr_write_layers(FILE *f, const struct image_layer *layers, int n, int w, int h,
-                                mc_diag *d)
+mcrt_status mc_exr_write_layers(FILE *f, const struct image_layer *layers, int n,
+                                const struct image_words *words, int w, int h, mc_diag *d)
 {
     static const char *const comp[3] = {"R", "G", "B"};
     struct exr_job job;
@@ -216,7 +236,8 @@ mcrt_status mc_exr_write_layers(FILE *f, const struct image_layer *layers, int n
     exr_result_t rv, rv_finish;
     int part, c, i;
 
-    if (w > INT32_MAX / (3 * (long)sizeof(float))) /* the library's line stride is an int32_t */
+    /* the library's line stride is an int32_t */
+    if (w > INT32_MAX / (4L * (words ? words->per_pixel > 3 ? words->per_pixel : 3 : 3)))
         return mc_fail(d, MCRT_ERR_INVALID, "%d pixels is too wide for one EXR scanline", w);
     for (i = 0; i < n; i++)
         if (layers[i].name && strlen(layers[i].name) > 200)
@@ -245,10 +266,19 @@ mcrt_status mc_exr_write_layers(FILE *f, const struct image_layer *layers, int n
             rv = exr_add_channel(ctx, part, name, EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LOGARITHMIC,
                                  1, 1);
         }
+    /* A state's words are UINT channels, which hold them exactly (FLOAT would not hold every
+     * bit pattern: NaN payloads are not kept by every reader), and its text a string attribute. */
+    for (i = 0; words && i < words->per_pixel && rv == EXR_ERR_SUCCESS; i++) {
+        char name[256];
+        snprintf(name, sizeof name, "%s.%02d", words->name, i);
+        rv = exr_add_channel(ctx, part, name, EXR_PIXEL_UINT, EXR_PERCEPTUALLY_LINEAR, 1, 1);
+    }
+    if (words && rv == EXR_ERR_SUCCESS)
+        rv = exr_attr_set_string(ctx, part, words->name, words->text);
     if (rv == EXR_ERR_SUCCESS)
         rv = exr_write_header(ctx);
     if (rv == EXR_ERR_SUCCESS)
-        rv = encode_pixels(ctx, layers, n, w, h);
+        rv = encode_pixels(ctx, layers, n, words, w, h);
     /* exr_finish writes the chunk offset table, so its result matters too. */
     rv_finish = exr_finish(&ctx);
     if (rv == EXR_ERR_SUCCESS)
@@ -262,7 +292,7 @@ static mcrt_status exr_write(FILE *f, const float *rgb, int w, int h, mc_diag *d
     struct image_layer beauty;
     beauty.name = NULL;
     beauty.rgb = rgb;
-    return mc_exr_write_layers(f, &beauty, 1, w, h, d);
+    return mc_exr_write_layers(f, &beauty, 1, NULL, w, h, d);
 }
 
 /* Whether chlist has the channels NAME.R, NAME.G, NAME.B (R, G, B when plen is 0), where NAME is
@@ -307,16 +337,17 @@ static int pick_channels(const exr_attr_chlist_t *chl, const char *layer, int id
     return 0;
 }
 
-/* Decode the chosen channels of part 0 into im, converting half to float on the way. */
-static exr_result_t decode_pixels(exr_context_t ctx, const exr_attr_box2i_t *dw, const int idx[3],
-                                  struct image *im, int *corrupt)
+/* Decode the chosen channels idx[0..count-1] of part 0 into data, count 4-byte elements of this
+ * type per pixel, w pixels a row (half is converted to float on the way). */
+static exr_result_t decode_pixels(exr_context_t ctx, const exr_attr_box2i_t *dw, const int *idx,
+                                  int count, exr_pixel_type_t type, void *data, size_t w,
+                                  int *corrupt)
 {
     exr_decode_pipeline_t dec = EXR_DECODE_PIPELINE_INITIALIZER;
     exr_chunk_info_t cinfo;
     exr_result_t rv;
     int32_t lines;
     int y, k, started = 0;
-    size_t w = (size_t)im->width;
 
     rv = exr_get_scanlines_per_chunk(ctx, 0, &lines);
     for (y = dw->min.y; rv == EXR_ERR_SUCCESS && y <= dw->max.y; y += lines) {
@@ -333,11 +364,11 @@ static exr_result_t decode_pixels(exr_context_t ctx, const exr_attr_box2i_t *dw,
             break;
         }
         /* Channels we do not want keep a NULL pointer, which the decoder skips. */
-        for (k = 0; k < 3; k++) {
+        for (k = 0; k < count; k++) {
             exr_coding_channel_info_t *ch = &dec.channels[idx[k]];
-            ch->decode_to_ptr =
-                (uint8_t *)(im->rgb + (size_t)(cinfo.start_y - dw->min.y) * w * 3 + (size_t)k);
-            set_rgb_layout(ch, w);
+            ch->decode_to_ptr = (uint8_t *)data + 4 * ((size_t)(cinfo.start_y - dw->min.y) * w *
+                                                           (size_t)count + (size_t)k);
+            set_layout(ch, w, count, type);
         }
         if (!started)
             rv = exr_decoding_choose_default_routines(ctx, 0, &dec);
@@ -386,27 +417,112 @@ static mcrt_status read_part(exr_context_t ctx, struct exr_job *job, const char 
     st = mc_image_alloc(im, (long)dw.max.x - dw.min.x + 1, (long)dw.max.y - dw.min.y + 1, d);
     if (st != MCRT_OK)
         return st;
-    rv = decode_pixels(ctx, &dw, idx, im, &corrupt);
+    rv = decode_pixels(ctx, &dw, idx, 3, EXR_PIXEL_FLOAT, im->rgb, (size_t)im->width, &corrupt);
     if (rv == EXR_ERR_SUCCESS && !corrupt)
         return MCRT_OK;
     mc_image_free(im);
     return corrupt ? mc_fail(d, MCRT_ERR_IO, "corrupt scanline chunk") : fail(job, rv, d);
 }
 
+/* Begin job on f and open it for reading into *ctx (to exr_finish, then end, whatever this
+ * returns). */
+static exr_result_t start_read(FILE *f, struct exr_job *job, exr_context_t *ctx)
+{
+    exr_context_initializer_t init;
+    begin(job, fileno(f));
+    init = initializer(job);
+    /* Without reconstruction a damaged chunk table is an error, not a guess. */
+    init.flags = EXR_CONTEXT_FLAG_DISABLE_CHUNK_RECONSTRUCTION;
+    return exr_start_read(ctx, "image", &init);
+}
+
 mcrt_status mc_exr_read_layer(FILE *f, const char *layer, struct image *im, mc_diag *d)
 {
     struct exr_job job;
-    exr_context_initializer_t init;
     exr_context_t ctx = NULL;
+    exr_result_t rv = start_read(f, &job, &ctx);
+    mcrt_status st =
+        rv == EXR_ERR_SUCCESS ? read_part(ctx, &job, layer, im, d) : fail(&job, rv, d);
+    exr_finish(&ctx);
+    end();
+    return st;
+}
+
+/* The words of part 0 (checked as read_part checks the image) and its text attribute. */
+static mcrt_status read_words(exr_context_t ctx, struct exr_job *job, struct image_words *words,
+                              char **text, int *w, int *h, mc_diag *d)
+{
+    exr_storage_t storage;
+    exr_attr_box2i_t dw;
+    const exr_attr_chlist_t *chl;
+    const char *str;
+    int32_t len;
     exr_result_t rv;
+    int idx[99], i, k, corrupt = 0;
+    long width, height;
     mcrt_status st;
 
-    begin(&job, fileno(f));
-    init = initializer(&job);
-    /* Without reconstruction a damaged chunk table is an error, not a guess. */
-    init.flags = EXR_CONTEXT_FLAG_DISABLE_CHUNK_RECONSTRUCTION;
-    rv = exr_start_read(&ctx, "image", &init);
-    st = rv == EXR_ERR_SUCCESS ? read_part(ctx, &job, layer, im, d) : fail(&job, rv, d);
+    if ((rv = exr_get_storage(ctx, 0, &storage)) != EXR_ERR_SUCCESS ||
+        (rv = exr_get_data_window(ctx, 0, &dw)) != EXR_ERR_SUCCESS ||
+        (rv = exr_get_channels(ctx, 0, &chl)) != EXR_ERR_SUCCESS)
+        return fail(job, rv, d);
+    if (storage != EXR_STORAGE_SCANLINE ||
+        exr_attr_get_string(ctx, 0, words->name, &len, &str) != EXR_ERR_SUCCESS)
+        return mc_fail(d, MCRT_ERR_IO, "no render state in it (the '%s' attribute of mcrt --state)",
+                       words->name);
+    for (k = 0; k < words->per_pixel; k++) {
+        idx[k] = -1;
+        for (i = 0; i < chl->num_channels; i++) {
+            const exr_attr_chlist_entry_t *e = &chl->entries[i];
+            int j;
+            if (word_channel(e->name.str, words, &j) && j == k && e->pixel_type == EXR_PIXEL_UINT &&
+                e->x_sampling == 1 && e->y_sampling == 1)
+                idx[k] = i;
+        }
+        if (idx[k] < 0)
+            return mc_fail(d, MCRT_ERR_IO, "render state without its channel '%s.%02d'",
+                           words->name, k);
+    }
+    width = (long)dw.max.x - dw.min.x + 1;
+    height = (long)dw.max.y - dw.min.y + 1;
+    if (width > INT32_MAX / (4L * words->per_pixel))
+        return mc_fail(d, MCRT_ERR_IO, "the image is too wide");
+    if ((st = mc_image_check_size(width, height, d)) != MCRT_OK)
+        return st;
+    words->data = mc_malloc((size_t)width * (size_t)height * (size_t)words->per_pixel * 4);
+    *text = mc_malloc((size_t)len + 1);
+    if (!words->data || !*text) {
+        free(words->data);
+        free(*text);
+        words->data = NULL;
+        *text = NULL;
+        return mc_fail(d, MCRT_ERR_NOMEM, "out of memory for a %ldx%ld render state", width,
+                       height);
+    }
+    memcpy(*text, str, (size_t)len);
+    (*text)[len] = '\0';
+    rv = decode_pixels(ctx, &dw, idx, words->per_pixel, EXR_PIXEL_UINT, words->data,
+                       (size_t)width, &corrupt);
+    if (rv == EXR_ERR_SUCCESS && !corrupt) {
+        *w = (int)width;
+        *h = (int)height;
+        return MCRT_OK;
+    }
+    free(words->data);
+    free(*text);
+    words->data = NULL;
+    *text = NULL;
+    return corrupt ? mc_fail(d, MCRT_ERR_IO, "corrupt scanline chunk") : fail(job, rv, d);
+}
+
+mcrt_status mc_exr_read_words(FILE *f, struct image_words *words, char **text, int *w, int *h,
+                              mc_diag *d)
+{
+    struct exr_job job;
+    exr_context_t ctx = NULL;
+    exr_result_t rv = start_read(f, &job, &ctx);
+    mcrt_status st = rv == EXR_ERR_SUCCESS ? read_words(ctx, &job, words, text, w, h, d)
+                                           : fail(&job, rv, d);
     exr_finish(&ctx);
     end();
     return st;
@@ -423,10 +539,17 @@ const struct image_format mc_exr_format = {"exr", "OpenEXR", "libopenexr-dev", e
 
 const struct image_format mc_exr_format = {"exr", "OpenEXR", "libopenexr-dev", NULL, NULL};
 
-mcrt_status mc_exr_write_layers(FILE *f, const struct image_layer *layers, int n, int w, int h,
-                                mc_diag *d)
+mcrt_status mc_exr_write_layers(FILE *f, const struct image_layer *layers, int n,
+                                const struct image_words *words, int w, int h, mc_diag *d)
 {
-    (void)f, (void)layers, (void)n, (void)w, (void)h;
+    (void)f, (void)layers, (void)n, (void)words, (void)w, (void)h;
+    return mc_fail(d, MCRT_ERR_UNSUPPORTED, "built without OpenEXR");
+}
+
+mcrt_status mc_exr_read_words(FILE *f, struct image_words *words, char **text, int *w, int *h,
+                              mc_diag *d)
+{
+    (void)f, (void)words, (void)text, (void)w, (void)h;
     return mc_fail(d, MCRT_ERR_UNSUPPORTED, "built without OpenEXR");
 }
 

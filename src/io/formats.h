@@ -32,9 +32,12 @@ extern const struct image_format mc_pfm_format; /* pfm.c: portable float map, al
 /* exr.c, behind mc_image_write_layers and mc_image_read_layer: several RGB layers in one EXR part
  * (unnamed: R, G, B; named: NAME.R, NAME.G, NAME.B), and reading one layer (NULL: the first RGB
  * one, as mc_exr_format's read). MCRT_ERR_UNSUPPORTED when built without OpenEXR. */
-mcrt_status mc_exr_write_layers(FILE *f, const struct image_layer *layers, int n, int w, int h,
-                                mc_diag *d);
+mcrt_status mc_exr_write_layers(FILE *f, const struct image_layer *layers, int n,
+                                const struct image_words *words, int w, int h, mc_diag *d);
 mcrt_status mc_exr_read_layer(FILE *f, const char *layer, struct image *im, mc_diag *d);
+/* Behind mc_image_read_words. */
+mcrt_status mc_exr_read_words(FILE *f, struct image_words *words, char **text, int *w, int *h,
+                              mc_diag *d);
 
 /* For readers: check a file's w x h: MCRT_ERR_IO unless 1 <= w, h and w*h <= MC_IMAGE_MAX_PIXELS.
  * d gets the reason only. */

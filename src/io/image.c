@@ -103,10 +103,16 @@ mcrt_status mc_image_write(const char *path, const float *rgb, int w, int h, mc_
 mcrt_status mc_image_write_layers(const char *path, const struct image_layer *layers, int n, int w,
                                   int h, mc_diag *d)
 {
+    return mc_image_write_words(path, layers, n, NULL, w, h, d);
+}
+
+mcrt_status mc_image_write_words(const char *path, const struct image_layer *layers, int n,
+                                 const struct image_words *words, int w, int h, mc_diag *d)
+{
     const struct image_format *fmt;
     struct mc_output out;
     mcrt_status st;
-    int i, layered = n > 1 || (n == 1 && layers[0].name && layers[0].name[0]);
+    int i, layered = words || n > 1 || (n == 1 && layers[0].name && layers[0].name[0]);
 
     for (i = 0; i < n && layers[i].rgb; i++)
         ;
@@ -123,7 +129,7 @@ mcrt_status mc_image_write_layers(const char *path, const struct image_layer *la
                        path, w, h);
     if ((st = mc_output_open(&out, path, d)) != MCRT_OK)
         return st;
-    st = layered ? mc_exr_write_layers(out.f, layers, n, w, h, d)
+    st = layered ? mc_exr_write_layers(out.f, layers, n, words, w, h, d)
                  : fmt->write(out.f, layers[0].rgb, w, h, d);
     if (st != MCRT_OK)
         st = explain(d, st, "write", path);
@@ -175,4 +181,25 @@ void mc_image_free(struct image *im)
     free(im->rgb);
     im->rgb = NULL;
     im->width = im->height = 0;
+}
+
+mcrt_status mc_image_read_words(const char *path, struct image_words *words, char **text, int *w,
+                                int *h, mc_diag *d)
+{
+    const struct image_format *fmt;
+    FILE *f;
+    mcrt_status st;
+    words->data = NULL;
+    *text = NULL;
+    if ((st = lookup(path, "read", &fmt, d)) != MCRT_OK)
+        return st;
+    if (fmt != &mc_exr_format)
+        return mc_fail(d, MCRT_ERR_UNSUPPORTED,
+                       "cannot read '%s': only EXR images hold a render state", path);
+    f = fopen(path, "rb");
+    if (!f)
+        return mc_fail(d, MCRT_ERR_IO, "cannot read '%s': %s", path, strerror(errno));
+    st = mc_exr_read_words(f, words, text, w, h, d);
+    fclose(f);
+    return st == MCRT_OK ? st : explain(d, st, "read", path);
 }

@@ -3,6 +3,8 @@
 #ifndef MCRT_IMAGE_H
 #define MCRT_IMAGE_H
 
+#include <stdint.h>
+
 #include "core/diag.h"
 
 struct image {
@@ -28,6 +30,22 @@ struct image_layer {
  * named one, needs EXR (channels LAYER.R, .G, .B); other formats are refused. */
 mcrt_status mc_image_write_layers(const char *path, const struct image_layer *layers, int n, int w,
                                   int h, mc_diag *d);
+/* Exact data an EXR carries beside its layers (a render's state, render/state.h): per_pixel
+ * 32-bit words per pixel as the UINT channels NAME.00, NAME.01, ..., and a text as the string
+ * attribute NAME of the header. */
+struct image_words {
+    const char *name;  /* "mcrtState" */
+    int per_pixel;     /* 1 to 99 */
+    const char *text;  /* written into the header */
+    uint32_t *data;    /* w·h·per_pixel words, rows top to bottom */
+};
+/* mc_image_write_layers with words beside the layers; path must be an EXR. */
+mcrt_status mc_image_write_words(const char *path, const struct image_layer *layers, int n,
+                                 const struct image_words *words, int w, int h, mc_diag *d);
+/* Read the words called words->name (per_pixel of them) of an EXR: words->data and *text are
+ * allocated (the caller frees both; nothing to free on failure), *w and *h the image's size. */
+mcrt_status mc_image_read_words(const char *path, struct image_words *words, char **text, int *w,
+                                int *h, mc_diag *d);
 /* Whether path's suffix is a format that holds named layers (EXR, in a build with it). */
 int mc_image_layered(const char *path);
 /* Read the named layer (NULL: as mc_image_read). Only EXR files have named layers. */

@@ -53,13 +53,19 @@ static void merge_sums(struct film_sums *a, const struct film_sums *b)
     a->count += b->count;
 }
 
-void mc_film_merge(struct film *dst, const struct film *src)
+void mc_film_merge(struct film *dst, const struct film *src) { mc_film_merge_at(dst, 0, 0, src); }
+
+void mc_film_merge_at(struct film *dst, int x0, int y0, const struct film *src)
 {
-    size_t i, n = (size_t)dst->width * (size_t)dst->height;
-    for (i = 0; i < n; i++) {
-        merge_sums(&dst->pixels[i].half[0], &src->pixels[i].half[0]);
-        merge_sums(&dst->pixels[i].half[1], &src->pixels[i].half[1]);
-    }
+    int x, y;
+    for (y = 0; y < src->height; y++)
+        for (x = 0; x < src->width; x++) {
+            struct film_pixel *p = &dst->pixels[(size_t)(y0 + y) * (size_t)dst->width +
+                                                (size_t)(x0 + x)];
+            const struct film_pixel *q = &src->pixels[(size_t)y * (size_t)src->width + (size_t)x];
+            merge_sums(&p->half[0], &q->half[0]);
+            merge_sums(&p->half[1], &q->half[1]);
+        }
 }
 
 void mc_film_clear(struct film *f)

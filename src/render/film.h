@@ -81,6 +81,9 @@ static inline void mc_film_add(struct film_sums *p, vec3 v)
  * if dst had seen src's samples after its own (Chan, Golub and LeVeque 1979). A half of dst with
  * no samples becomes a copy of src's, bit for bit. */
 void mc_film_merge(struct film *dst, const struct film *src);
+/* mc_film_merge into the window of dst whose top-left pixel is (x0, y0), src's size, which must
+ * lie inside dst: the assembly of crops, and the merge of renders of one crop. */
+void mc_film_merge_at(struct film *dst, int x0, int y0, const struct film *src);
 /* Remove every sample (the film keeps its size). */
 void mc_film_clear(struct film *f);
 

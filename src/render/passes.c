@@ -121,11 +121,21 @@ mcrt_status mc_render_passes(const struct render_settings *rs, mc_pass_fn pass_f
     struct rate_fit fit = {NULL, NULL, 0, 0};
     struct whole_progress wp;
     uint64_t pixels = (uint64_t)f->width * (uint64_t)f->height, budget = UINT64_MAX;
-    int limited = rs->time_budget > 0.0 || rs->target_error > 0.0;
+    int limited = rs->time_budget > 0.0 || rs->target_error > 0.0 || rs->passes > 0 ||
+                  rs->first_pass > 0 || rs->done_passes > 0;
+    /* The passes f is to hold: rs->passes, or with a budget or a target the spp limit, or one
+     * more than a resumed film holds. */
+    int max_passes = rs->passes > 0 && rs->passes < rs->max_passes ? rs->passes
+                     : rs->passes > 0 || rs->time_budget > 0.0 || rs->target_error > 0.0
+                         ? rs->max_passes
+                         : rs->done_passes + 1;
     double t0 = mc_seconds(), elapsed, relmse;
     mcrt_status st;
-    out->passes = 0;
+    size_t i;
+    out->passes = rs->done_passes;
     out->samples = out->rays = out->nan_count = 0;
+    for (i = 0; i < pixels; i++)
+        out->samples += mc_film_count(&f->pixels[i]);
     out->relmse_slope = -1.0;
     if (!limited && !rs->adaptive) {
         st = pass_fn(ctx, rs, f, &res, d);
@@ -147,8 +157,8 @@ mcrt_status mc_render_passes(const struct render_settings *rs, mc_pass_fn pass_f
     }
     wp.rs = rs;
     wp.t0 = t0;
-    wp.done = 0;
-    wp.expected = limited ? (double)rs->max_passes : (double)((rs->spp + pass.spp - 1) / pass.spp);
+    wp.done = out->passes;
+    wp.expected = limited ? (double)max_passes : (double)((rs->spp + pass.spp - 1) / pass.spp);
     wp.last = 0.0;
     if (rs->progress) {
         pass.progress = report;
@@ -158,8 +168,8 @@ mcrt_status mc_render_passes(const struct render_settings *rs, mc_pass_fn pass_f
         uint64_t given = (uint64_t)pass.spp * pixels;
         if (given > budget - out->samples)
             given = budget - out->samples;
-        pass.seed = mc_pass_seed(rs->seed, out->passes);
-        pass.pass = out->passes;
+        pass.pass = rs->first_pass + out->passes;
+        pass.seed = mc_pass_seed(rs->seed, pass.pass);
         pass.pixel_spp = NULL;
         if (rs->adaptive && out->passes > 0) {
             given = mc_adaptive_allocate(&ad, f, given);
@@ -180,7 +190,7 @@ mcrt_status mc_render_passes(const struct render_settings *rs, mc_pass_fn pass_f
             break;
         }
         out->relmse_slope = fit_slope(&fit);
-        if (limited ? out->passes >= rs->max_passes : out->samples >= budget)
+        if (limited ? out->passes >= max_passes : out->samples >= budget)
             break;
         if (rs->target_error > 0.0 && relmse <= rs->target_error)
             break;
@@ -190,7 +200,7 @@ mcrt_status mc_render_passes(const struct render_settings *rs, mc_pass_fn pass_f
          * passes of equal length; to the end of the time budget. */
         wp.done = out->passes;
         if (limited) {
-            double more = (double)rs->max_passes;
+            double more = (double)max_passes;
             if (rs->target_error > 0.0 && relmse > 0.0)
                 more = fmin(more, out->passes * pow(rs->target_error / relmse,
                                                     1.0 / out->relmse_slope));

@@ -35,6 +35,10 @@ struct render_settings {
     double time_budget;               /* seconds; 0 = none */
     double target_error;              /* stop when mc_film_est_relmse falls to this; 0 = none */
     int max_passes;                   /* >= 1: never more (the spp limit) */
+    int passes;                       /* > 0: the film is to hold this many passes; 0: see passes.h */
+    /* The film's first pass is pass first_pass of the seed (0 but for a render continuing or
+     * sharing another's), and it holds done_passes complete passes already (a resumed render). */
+    int first_pass, done_passes;
     /* Nonzero: after a uniform first pass, each pass spreads its samples over the pixels by
      * their estimated error (render/adaptive.h). Without a budget or a target, spp is then the
      * mean samples per pixel of the whole render, spent in passes of mc_adaptive_pass_spp. */
