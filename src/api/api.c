@@ -697,13 +697,6 @@ static mcrt_status save_layers(mcrt_render *r, const char *path, const struct im
     return st;
 }
 
-/* Whether path names an EXR file. */
-static int is_exr(const char *path)
-{
-    const char *slash = strrchr(path, '/'), *dot = strrchr(slash ? slash + 1 : path, '.');
-    return dot && (strcmp(dot, ".exr") == 0 || strcmp(dot, ".EXR") == 0);
-}
-
 /* r->sums: the film as state words; -1 when out of memory. */
 static int pack_sums(mcrt_render *r)
 {
@@ -725,11 +718,11 @@ mcrt_status mcrt_render_save(mcrt_render *r, const char *path)
         return mc_fail(&r->err, MCRT_ERR_INVALID, "mcrt_render_save: path is NULL");
     if (!r->rgb)
         return mc_fail(&r->err, MCRT_ERR_INVALID, "nothing rendered yet");
-    if (r->opt.save_state && !is_exr(path))
+    if (r->opt.save_state && !mc_image_layered(path))
         return mc_fail(&r->err, MCRT_ERR_INVALID, "cannot write '%s': a render state needs an EXR",
                        path);
     /* The state goes with every EXR of a limited render, which a user may want to go on with. */
-    if (r->has_state && is_exr(path) &&
+    if (r->has_state && mc_image_layered(path) &&
         (r->opt.save_state || r->opt.time_budget > 0.0 || r->opt.target_error > 0.0)) {
         char text[1024];
         struct image_words words = {MC_STATE_NAME, MC_STATE_WORDS, text, NULL};
@@ -740,7 +733,7 @@ mcrt_status mcrt_render_save(mcrt_render *r, const char *path)
         return save_layers(r, path, &words);
     }
     /* A denoised render keeps its raw image and inputs in an EXR; other formats get the image. */
-    if (r->opt.aovs || (r->raw && is_exr(path)))
+    if (r->opt.aovs || (r->raw && mc_image_layered(path)))
         return save_layers(r, path, NULL);
     return mc_image_write(path, r->rgb, r->film.width, r->film.height, &r->err);
 }
