@@ -150,6 +150,14 @@ typedef struct mcrt_options {
     int passes, first_pass;
     const char *resume;
     int save_state;
+    /* Nonzero: denoise the image after rendering (NFOR, Bitterli et al. 2016: features of the
+     * first non-specular surface prefiltered across the two half buffers, first-order
+     * regression of colour on them, candidate filters chosen per pixel by their error estimated
+     * from the halves). mcrt_render_pixels is then the denoised image, est_relmse its estimated
+     * error (est_relmse_raw the raw image's), and an EXR from mcrt_render_save holds the layers
+     * "raw", "A", "B" and, per half, "albedo.A", "albedo.B", "normal.*", "depth.*",
+     * "emission.*", which mcrt_denoise_file reads again. */
+    int denoise;
 } mcrt_options;
 
 /* Fill o with defaults (all zero / NULL) and set o->size. */
@@ -199,6 +207,9 @@ typedef struct mcrt_stats {
     /* The seconds a render like this one would need for a relMSE of 1e-2, 1e-3 and 1e-4, from
      * est_relmse, seconds and relmse_slope (NaN when est_relmse is). */
     double seconds_to_relmse[3];
+    /* The raw (not denoised) image's est_relmse, equal to est_relmse without opt.denoise. */
+    double est_relmse_raw;
+    double denoise_seconds; /* the denoiser's part of seconds; 0 without opt.denoise */
 } mcrt_stats;
 /* Facts about the last run (all zero before one), into the first out_size bytes of out:
  * pass sizeof *out. */
@@ -226,6 +237,16 @@ const char *mcrt_render_error(const mcrt_render *r);
 void mcrt_render_free(mcrt_render *r);
 
 /* ---- Comparing images ---- */
+
+/* Denoise the EXR at in as opt.denoise does a render: in must hold the layers A and B and the
+ * per-half layers that a render with opt.denoise saves (albedo.A, albedo.B, normal.A, normal.B,
+ * depth.A, depth.B, emission.A, emission.B), all of one size. out (EXR) gets the denoised image
+ * as its RGB and the layer "raw", written to a temporary file renamed when complete. threads 0:
+ * all cores. est_raw and est_denoised, when not NULL, get the estimated relMSE of the raw and the
+ * denoised image. On failure a message "in: what is wrong" is written into error (error_size
+ * bytes) and out is left as it was. */
+mcrt_status mcrt_denoise_file(const char *in, const char *out, int threads, double *est_raw,
+                              double *est_denoised, char *error, size_t error_size);
 
 typedef struct mcrt_diff_options {
     size_t size;            /* sizeof(mcrt_diff_options), set by mcrt_diff_options_init */

@@ -8,10 +8,12 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "api/denoise.h"
 #include "api/sized.h"
 #include "api/stats_json.h"
 #include "core/alloc.h"
 #include "core/atomic.h"
+#include "core/clock.h"
 #include "core/file.h"
 #include "core/names.h"
 #include "export/pov.h"
@@ -51,6 +53,7 @@ struct mcrt_render {
     int has_state;
     uint32_t *sums;         /* the film as state words, made by mcrt_render_sums */
     int sums_current;       /* whether sums holds the film as it is */
+    float *raw;             /* the image before denoising, with opt.denoise */
     mc_atomic_int cancel;
     mcrt_stats stats;
     mc_diag err;
@@ -237,6 +240,7 @@ void mcrt_render_free(mcrt_render *r)
     mc_film_free(&r->film);
     mc_aov_free(&r->aov);
     free(r->rgb);
+    free(r->raw);
     free(r->integrator);
     free(r->sampler);
     free(r->aovs);
@@ -297,7 +301,7 @@ const char *mcrt_scene_info(mcrt_scene *s)
     return s->info;
 }
 
-static int default_threads(void)
+int mc_default_threads(void)
 {
     long n = sysconf(_SC_NPROCESSORS_ONLN);
     return n < 1 ? 1 : n > MAX_THREADS ? MAX_THREADS : (int)n;
@@ -370,7 +374,7 @@ static mcrt_status settings(const mcrt_render *r, struct render_settings *rs,
     }
     *it = mc_integrator_get(method);
     rs->spp = o->spp ? o->spp : s->film.spp;
-    rs->threads = o->threads ? o->threads : default_threads();
+    rs->threads = o->threads ? o->threads : mc_default_threads();
     rs->seed = o->seed;
     rs->pass = 0;
     rs->integrator = s->integrator;
@@ -424,6 +428,51 @@ double mcrt_seconds_to_relmse(const mcrt_stats *st, double relmse)
     if (!st || !(st->est_relmse > 0.0) || !(relmse > 0.0) || !(st->relmse_slope < 0.0))
         return NAN;
     return st->seconds * pow(relmse / st->est_relmse, 1.0 / st->relmse_slope);
+}
+
+/* The aov.h layer of each of the denoiser's (api/denoise.h). */
+static const enum aov_kind denoise_aov[DENOISE_LAYERS] = {AOV_ALBEDO, AOV_NORMAL, AOV_DEPTH,
+                                                          AOV_EMISSION};
+#define DENOISE_IMAGES (3 + 2 * DENOISE_LAYERS)
+
+/* The denoiser's inputs from r's film and first-surface layers: the halves, each layer per half
+ * and the emission's variance, into buf (DENOISE_IMAGES images of the film's size). Returns the
+ * emission's variance. */
+static const float *denoise_inputs(const mcrt_render *r, float *buf, const float *halves[2],
+                                   const float *layer[DENOISE_LAYERS][2])
+{
+    size_t n3 = (size_t)r->film.width * (size_t)r->film.height * 3;
+    int h, l;
+    for (h = 0; h < 2; h++) {
+        halves[h] = buf + (size_t)h * n3;
+        mc_film_resolve_half(&r->film, h, buf + (size_t)h * n3);
+        for (l = 0; l < DENOISE_LAYERS; l++) {
+            float *dst = buf + (size_t)(2 + 2 * l + h) * n3;
+            mc_aov_resolve(&r->aov, denoise_aov[l], h, dst);
+            layer[l][h] = dst;
+        }
+    }
+    mc_aov_emission_variance(&r->aov, buf + (size_t)(DENOISE_IMAGES - 1) * n3);
+    return buf + (size_t)(DENOISE_IMAGES - 1) * n3;
+}
+
+/* r->rgb denoised, the raw image kept in r->raw; *est the denoised image's estimated relMSE. */
+static mcrt_status denoise_render(mcrt_render *r, int threads, double *est)
+{
+    size_t n3 = (size_t)r->film.width * (size_t)r->film.height * 3;
+    float *buf = mc_malloc(n3 * DENOISE_IMAGES * sizeof *buf);
+    const float *halves[2], *layer[DENOISE_LAYERS][2], *evar;
+    mcrt_status st;
+    if (!buf || !(r->raw = mc_malloc(n3 * sizeof *r->raw))) {
+        free(buf);
+        return mc_fail(&r->err, MCRT_ERR_NOMEM, "out of memory for the denoiser");
+    }
+    memcpy(r->raw, r->rgb, n3 * sizeof *r->raw);
+    evar = denoise_inputs(r, buf, halves, layer);
+    st = mc_denoise_layers(halves, layer, evar, r->film.width, r->film.height, threads, r->rgb,
+                           est, NULL, &r->err);
+    free(buf);
+    return st;
 }
 
 /* What r's film will be a render of (render/state.h), for its state. */
@@ -508,8 +557,9 @@ mcrt_status mcrt_render_run(mcrt_render *r)
         return st;
     mc_film_free(&r->film);
     free(r->rgb);
+    free(r->raw);
     free(r->sums);
-    r->rgb = NULL;
+    r->rgb = r->raw = NULL;
     r->sums = NULL;
     r->sums_current = 0;
     w = r->opt.crop_x1 ? r->opt.crop_x1 - r->opt.crop_x0 : s->film.width;
@@ -517,7 +567,7 @@ mcrt_status mcrt_render_run(mcrt_render *r)
     n = (size_t)w * (size_t)h;
     mc_aov_free(&r->aov);
     if (mc_film_init(&r->film, w, h) != 0 || !(r->rgb = mc_malloc(n * 3 * sizeof *r->rgb))
-        || (first_hit_aovs(r->opt.aovs) && mc_aov_init(&r->aov, w, h) != 0))
+        || ((first_hit_aovs(r->opt.aovs) || r->opt.denoise) && mc_aov_init(&r->aov, w, h) != 0))
         return mc_fail(&r->err, MCRT_ERR_NOMEM, "out of memory for a %dx%d image", w, h);
     /* The random sampler's samples are independent: its pooled sample variance is unbiased and
      * measured more accurate than the halves' (film.h). */
@@ -559,7 +609,15 @@ mcrt_status mcrt_render_run(mcrt_render *r)
     r->stats.seconds = res.seconds;
     r->stats.rays = res.rays;
     r->stats.nan_count = res.nan_count;
-    r->stats.est_relmse = mc_film_est_relmse(&r->film);
+    r->stats.est_relmse = r->stats.est_relmse_raw = mc_film_est_relmse(&r->film);
+    r->stats.denoise_seconds = 0.0;
+    if (r->opt.denoise && res.passes > 0 && st == MCRT_OK) {
+        double t0 = mc_seconds();
+        if ((st = denoise_render(r, rs.threads, &r->stats.est_relmse)) != MCRT_OK)
+            return st;
+        r->stats.denoise_seconds = mc_seconds() - t0;
+        r->stats.seconds += r->stats.denoise_seconds;
+    }
     r->stats.efficiency = 1.0 / (r->stats.est_relmse * res.seconds);
     r->stats.est_relmse_bias2 = res.est_relmse_bias2;
     r->stats.est_relmse_variance = res.est_relmse_variance;
@@ -585,9 +643,10 @@ const float *mcrt_render_pixels(const mcrt_render *r, int *width, int *height)
  * computed here, as only saving needs them. The halves are two layers, A and B. */
 static mcrt_status save_layers(mcrt_render *r, const char *path, const struct image_words *words)
 {
-    struct image_layer layers[2 + AOV_COUNT];
+    struct image_layer layers[2 + AOV_COUNT + 1 + DENOISE_IMAGES];
+    char names[2 * DENOISE_LAYERS][32];
     size_t npix = (size_t)r->film.width * (size_t)r->film.height;
-    float *buf = mc_malloc(npix * 3 * (AOV_COUNT + 1) * sizeof *buf), *rgb = buf;
+    float *buf = mc_malloc(npix * 3 * (AOV_COUNT + 1 + DENOISE_IMAGES) * sizeof *buf), *rgb = buf;
     int i, n = 1;
     mcrt_status st;
     if (!buf)
@@ -608,22 +667,35 @@ static mcrt_status save_layers(mcrt_render *r, const char *path, const struct im
             mc_film_variance(&r->film, rgb);
             layers[n].name = mc_aov_names[i];
         } else {
-            mc_aov_resolve(&r->aov, (enum aov_kind)i, rgb);
+            mc_aov_resolve(&r->aov, (enum aov_kind)i, -1, rgb);
             layers[n].name = mc_aov_names[i];
         }
         layers[n++].rgb = rgb;
         rgb += npix * 3;
     }
+    if (r->raw) { /* denoised: the raw image and the denoiser's inputs, to denoise again */
+        const float *halves[2], *layer[DENOISE_LAYERS][2];
+        int h, l;
+        const float *evar = denoise_inputs(r, rgb, halves, layer);
+        layers[n].name = "raw";
+        layers[n++].rgb = r->raw;
+        for (h = 0; h < 2 && !has_aov(r->opt.aovs, "halves"); h++) {
+            layers[n].name = h ? "B" : "A";
+            layers[n++].rgb = halves[h];
+        }
+        for (l = 0; l < DENOISE_LAYERS; l++)
+            for (h = 0; h < 2; h++) {
+                snprintf(names[2 * l + h], sizeof names[0], "%s.%c", mc_denoise_layer_names[l],
+                         h ? 'B' : 'A');
+                layers[n].name = names[2 * l + h];
+                layers[n++].rgb = layer[l][h];
+            }
+        layers[n].name = MC_DENOISE_EMISSION_VAR;
+        layers[n++].rgb = evar;
+    }
     st = mc_image_write_words(path, layers, n, words, r->film.width, r->film.height, &r->err);
     free(buf);
     return st;
-}
-
-/* Whether path names an EXR file. */
-static int is_exr(const char *path)
-{
-    const char *slash = strrchr(path, '/'), *dot = strrchr(slash ? slash + 1 : path, '.');
-    return dot && (strcmp(dot, ".exr") == 0 || strcmp(dot, ".EXR") == 0);
 }
 
 /* r->sums: the film as state words; -1 when out of memory. */
@@ -647,11 +719,11 @@ mcrt_status mcrt_render_save(mcrt_render *r, const char *path)
         return mc_fail(&r->err, MCRT_ERR_INVALID, "mcrt_render_save: path is NULL");
     if (!r->rgb)
         return mc_fail(&r->err, MCRT_ERR_INVALID, "nothing rendered yet");
-    if (r->opt.save_state && !is_exr(path))
+    if (r->opt.save_state && !mc_image_layered(path))
         return mc_fail(&r->err, MCRT_ERR_INVALID, "cannot write '%s': a render state needs an EXR",
                        path);
     /* The state goes with every EXR of a limited render, which a user may want to go on with. */
-    if (r->has_state && is_exr(path) &&
+    if (r->has_state && mc_image_layered(path) &&
         (r->opt.save_state || r->opt.time_budget > 0.0 || r->opt.target_error > 0.0)) {
         char text[1024];
         struct image_words words = {MC_STATE_NAME, MC_STATE_WORDS, text, NULL};
@@ -661,7 +733,8 @@ mcrt_status mcrt_render_save(mcrt_render *r, const char *path)
         mc_state_format(&r->state, text, sizeof text);
         return save_layers(r, path, &words);
     }
-    if (r->opt.aovs)
+    /* A denoised render keeps its raw image and inputs in an EXR; other formats get the image. */
+    if (r->opt.aovs || (r->raw && mc_image_layered(path)))
         return save_layers(r, path, NULL);
     return mc_image_write(path, r->rgb, r->film.width, r->film.height, &r->err);
 }

@@ -52,6 +52,9 @@ void mc_stats_json(FILE *f, const mcrt_stats *st, uint64_t seed, const char *sce
             st->passes, st->adaptive ? "true" : "false", st->spp_min, st->spp_max);
     /* An error that cannot be estimated (1 spp) is null. */
     json_number(f, "est_relmse", st->est_relmse, ",\n");
+    /* The raw image's, beside a denoised one's (the same without denoising). */
+    json_number(f, "est_relmse_raw", st->est_relmse_raw, ",\n");
+    json_number(f, "denoise_seconds", st->denoise_seconds, ",\n");
     json_number(f, "efficiency", st->efficiency, ",\n");
     /* A biased integrator's est_relmse in its parts; null for the others. */
     json_number(f, "est_relmse_bias2", st->est_relmse_bias2, ",\n");

@@ -14,6 +14,7 @@
 
 #include "cli/args.h"
 #include "cli/converge.h"
+#include "cli/denoise.h"
 #include "cli/diff.h"
 #include "cli/merge.h"
 #include "mcrt.h"
@@ -60,7 +61,10 @@ static const char usage_after_aov[] =
     "  --state             keep the render's state in the EXR image (as --time and\n"
     "                      --target-error always do), for --resume and mcrt merge\n"
     "  --resume FILE.exr   go on from FILE's state: the image is bit-identical to one render\n"
-    "                      of the same passes; refused for another scene, options or seed\n";
+    "                      of the same passes; refused for another scene, options or seed\n"
+    "  --denoise           denoise the image (NFOR, from the two half buffers and the first\n"
+    "                      non-specular surface's albedo, normal, depth and emission); an EXR\n"
+    "                      also gets the raw image (layer raw) and the denoiser's inputs\n";
 static const char usage_after_sampler[] =
     "  --list SET          print the names of a set, one a line (with a tab and a description\n"
     "                      where the set has them): integrator, sampler, aov, filter, shape,\n"
@@ -261,7 +265,7 @@ static void progress_clear(struct progress *p)
 enum { OPT_OUTPUT, OPT_SPP, OPT_THREADS, OPT_SEED, OPT_INTEGRATOR, OPT_ALL_FEATURES, OPT_STATS,
        OPT_QUIET, OPT_HELP, OPT_VERSION, OPT_AOV, OPT_CROP, OPT_TIME, OPT_TARGET_ERROR,
        OPT_ADAPTIVE, OPT_SAMPLER, OPT_LIST, OPT_PASSES, OPT_FIRST_PASS, OPT_STATE, OPT_RESUME,
-       OPT_END };
+       OPT_DENOISE, OPT_END };
 static const struct arg_spec render_options[OPT_END + 1] = {
     [OPT_OUTPUT] = {NULL, 'o', 1},        [OPT_SPP] = {"spp", 0, 1},
     [OPT_THREADS] = {"threads", 0, 1},    [OPT_SEED] = {"seed", 0, 1},
@@ -274,11 +278,12 @@ static const struct arg_spec render_options[OPT_END + 1] = {
     [OPT_SAMPLER] = {"sampler", 0, 1},    [OPT_LIST] = {"list", 0, 1},
     [OPT_PASSES] = {"passes", 0, 1},      [OPT_FIRST_PASS] = {"first-pass", 0, 1},
     [OPT_STATE] = {"state", 0, 0},        [OPT_RESUME] = {"resume", 0, 1},
+    [OPT_DENOISE] = {"denoise", 0, 0},
     [OPT_END] = {NULL, 0, 0}};
 
 struct render_args {
     const char *scene, *output, *stats, *integrator, *aovs, *sampler, *resume;
-    int spp, threads, quiet, all_features, adaptive, passes, first_pass, state;
+    int spp, threads, quiet, all_features, adaptive, passes, first_pass, state, denoise;
     int crop[4];                      /* x0, y0, x1, y1; all 0 = none */
     double time_budget, target_error; /* 0 = none */
     uint64_t seed;
@@ -346,6 +351,9 @@ static int parse_render_args(int argc, char **argv, struct render_args *a)
             break;
         case OPT_ADAPTIVE:
             a->adaptive = 1;
+            break;
+        case OPT_DENOISE:
+            a->denoise = 1;
             break;
         case OPT_SAMPLER:
             if (!mc_args_name("sampler", "sampler", v))
@@ -465,6 +473,7 @@ static int render(const struct render_args *a, const char *output)
     o.time_budget = a->time_budget;
     o.target_error = a->target_error;
     o.adaptive = a->adaptive;
+    o.denoise = a->denoise;
     o.sampler = a->sampler;
     o.passes = a->passes;
     o.first_pass = a->first_pass;
@@ -515,8 +524,12 @@ static int render(const struct render_args *a, const char *output)
     if (st.adaptive)
         snprintf(passes + strlen(passes), sizeof passes - strlen(passes), " (%d to %d spp)",
                  st.spp_min, st.spp_max);
-    /* The time to the next power of ten below the estimated error. */
-    if (st.est_relmse > 0.0) {
+    /* A denoised image's estimated error beside the raw one's; the time to a lower error is
+     * predicted for raw renders only (the denoiser's error falls at its own rate). */
+    if (a->denoise)
+        snprintf(to_goal, sizeof to_goal, " (raw %.3g, denoised in %.2f s)", st.est_relmse_raw,
+                 st.denoise_seconds);
+    else if (st.est_relmse > 0.0) { /* the time to the next power of ten below the error */
         double goal = pow(10.0, floor(log10(st.est_relmse)));
         char took[32];
         goal = goal < st.est_relmse ? goal : goal / 10.0;
@@ -682,7 +695,8 @@ static int cmd_pov(int argc, char **argv)
 static const struct command {
     const char *name;
     int (*run)(int argc, char **argv);
-} commands[] = {{"render", cmd_render}, {"info", cmd_info}, {"pov", cmd_pov}, {"diff", mc_cli_diff}, {"converge", mc_cli_converge}, {"merge", mc_cli_merge}};
+} commands[] = {{"render", cmd_render}, {"info", cmd_info}, {"pov", cmd_pov}, {"diff", mc_cli_diff}, {"converge", mc_cli_converge}, {"merge", mc_cli_merge},
+                {"denoise", mc_cli_denoise}};
 
 int main(int argc, char **argv)
 {

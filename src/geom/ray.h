@@ -89,4 +89,7 @@ static inline vec3 ray_spawn(vec3 p, vec3 n, float err)
     return ray_offset(v3_madd(p, n, err), n);
 }
 
+/* The side of the surface a direction leaves from, for offsetting ray origins. */
+static inline vec3 side_normal(vec3 ng, vec3 w) { return v3_dot(w, ng) >= 0.0f ? ng : v3_neg(ng); }
+
 #endif

@@ -21,9 +21,6 @@ static inline float power_heuristic(float a, float b)
     return a2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
 }
 
-/* The side of the surface a direction leaves from, for offsetting ray origins. */
-static inline vec3 side_normal(vec3 ng, vec3 w) { return v3_dot(w, ng) >= 0.0f ? ng : v3_neg(ng); }
-
 /* Ray queries: a static scene asks the static BVH alone, and surfaces need no motion. Where F is
  * a constant (path.c's instantiations), these branches are resolved at compile time. */
 static inline int trace(const struct scene *s, const struct ray *r, struct hit *h, unsigned F)

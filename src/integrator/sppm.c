@@ -233,7 +233,7 @@ static void camera_pixel(const struct pass_ctx *c, struct tile_worker *w, int x,
     if (c->motion)
         mc_camera_at_time(&c->cam, &r, c->time);
     if (c->rs->aov) /* first-hit layers: each pass's camera ray, as a per-ray render's samples */
-        mc_aov_record(&c->rs->aov->pixels[i], s, &r);
+        mc_aov_record(&c->rs->aov->pixels[i], (int)(c->pass & 1), s, &r);
     prev_p = r.o;
     for (;;) {
         struct hit h;

@@ -136,6 +136,11 @@ mcrt_status mc_image_write_words(const char *path, const struct image_layer *lay
     return mc_output_close(&out, st, d);
 }
 
+int mc_image_layered(const char *path)
+{
+    return path && find_format(path_suffix(path)) == &mc_exr_format;
+}
+
 mcrt_status mc_image_read(const char *path, struct image *im, mc_diag *d)
 {
     return mc_image_read_layer(path, NULL, im, d);

@@ -46,6 +46,8 @@ mcrt_status mc_image_write_words(const char *path, const struct image_layer *lay
  * allocated (the caller frees both; nothing to free on failure), *w and *h the image's size. */
 mcrt_status mc_image_read_words(const char *path, struct image_words *words, char **text, int *w,
                                 int *h, mc_diag *d);
+/* Whether path's suffix is a format that holds named layers (EXR, in a build with it). */
+int mc_image_layered(const char *path);
 /* Read the named layer (NULL: as mc_image_read). Only EXR files have named layers. */
 mcrt_status mc_image_read_layer(const char *path, const char *layer, struct image *im,
                                 mc_diag *d);

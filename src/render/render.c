@@ -54,7 +54,7 @@ static inline void render_pixel(struct job *j, struct tile_worker *w, int x, int
                 mc_camera_at_time(&j->camera, &r,
                                   mc_camera_time(&j->camera, mc_sampler_1d(&smp)));
             if (rs->aov)
-                mc_aov_record(&rs->aov->pixels[px - j->film->pixels], j->scene, &r);
+                mc_aov_record(&rs->aov->pixels[px - j->film->pixels], h, j->scene, &r);
             L = j->Li(j->scene, &rs->integrator, r, &smp, &w->rays);
             if (v3_is_finite(L))
                 mc_film_add(&px->half[h], L);

@@ -1,6 +1,7 @@
 /* test_aov.c: the extra image layers of a render (mcrt_options.aovs) read back from its EXR: the
  * albedo, normal and depth of a plane facing the camera are known exactly, and the variance layer
- * is the one src/render/film.c computes. */
+ * is the one src/render/film.c computes; through a mirror, the layers of the first non-specular
+ * surface and its emission (the denoiser's, per half). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,6 +19,67 @@ static const char scene_text[] =
     "material m { diffuse 0.5 0.25 0.125 }\n"
     "quad { corner -50 -50 -5  edge1 100 0 0  edge2 0 100 0  material m }\n"
     "environment { radiance 1 }\n";
+
+/* The same camera before a mirror of reflectance 0.8 at z = -2 facing it; behind the camera, at
+ * z = 5 facing it, the quad of colour m emitting (2, 3, 4): the first non-specular surface. */
+static const char mirror_text[] =
+    "film { width 8 height 6 spp 4 }\n"
+    "camera { eye 0 0 0  look 0 0 -1  fov 30 }\n"
+    "material m { diffuse 0.5 0.25 0.125 }\n"
+    "material mir { mirror 0.8 }\n"
+    "quad { corner -50 -50 -2  edge1 100 0 0  edge2 0 100 0  material mir }\n"
+    "quad { corner -50 -50 5  edge1 0 100 0  edge2 100 0 0  material m  emit 2 3 4 }\n";
+
+/* Whether every pixel of layer `name` of path is v within 1e-6 relative (float products). */
+static int layer_is(const char *path, const char *name, float r, float g, float b)
+{
+    struct image im = {0, 0, NULL};
+    mc_diag d;
+    int i, ok = mc_image_read_layer(path, name, &im, &d) == MCRT_OK;
+    for (i = 0; ok && i < im.width * im.height; i++)
+        ok = fabsf(im.rgb[3 * i] - r) <= 1e-6f * fabsf(r) && fabsf(im.rgb[3 * i + 1] - g) <= 1e-6f * fabsf(g)
+             && fabsf(im.rgb[3 * i + 2] - b) <= 1e-6f * fabsf(b);
+    mc_image_free(&im);
+    return ok;
+}
+
+/* The first non-specular surface through a mirror (mcrt_options.denoise records its layers per
+ * half): albedo and emission times the mirror's 0.8, the normal facing the reflected ray, the
+ * depth the whole path, 2 + 7 = 9 on the axis; and the denoised render keeps its raw image. */
+static void mirror(const char *path)
+{
+    mcrt_scene *s = mcrt_scene_new();
+    mcrt_render *r;
+    mcrt_options o;
+    struct image im = {0, 0, NULL}, raw = {0, 0, NULL};
+    mc_diag d;
+    int i, ok;
+    T_CHECK(mcrt_scene_load_string(s, mirror_text, strlen(mirror_text), NULL) == MCRT_OK, "%s",
+            mcrt_scene_error(s));
+    mcrt_options_init(&o);
+    o.denoise = 1;
+    r = mcrt_render_new(s, &o);
+    T_CHECK(mcrt_render_run(r) == MCRT_OK && mcrt_render_save(r, path) == MCRT_OK, "%s",
+            mcrt_render_error(r));
+    T_CHECK(layer_is(path, "albedo.A", 0.4f, 0.2f, 0.1f) && layer_is(path, "albedo.B", 0.4f, 0.2f, 0.1f),
+            "albedo through the mirror: 0.8 times the quad's");
+    T_CHECK(layer_is(path, "emission.A", 1.6f, 2.4f, 3.2f) && layer_is(path, "emission.B", 1.6f, 2.4f, 3.2f),
+            "emission through the mirror: 0.8 times the quad's");
+    T_CHECK(layer_is(path, "normal.A", 0.0f, 0.0f, -1.0f), "the normal faces the reflected ray");
+    ok = mc_image_read_layer(path, "depth.B", &im, &d) == MCRT_OK;
+    for (i = 0; ok && i < 8 * 6; i++)
+        ok = im.rgb[3 * i] >= 8.9999f && im.rgb[3 * i] < 9.0f * 1.0955f;
+    T_CHECK(ok, "depth: the path's length, between 9 and 9.86 (pixel %d)", i - 1);
+    mc_image_free(&im);
+    /* The emission's variance is 0: every ray sees the same. */
+    T_CHECK(layer_is(path, "emission.var", 0.0f, 0.0f, 0.0f), "emission.var 0");
+    ok = mc_image_read_layer(path, "raw", &raw, &d) == MCRT_OK;
+    T_CHECK(ok, "a denoised render keeps the layer raw: %s", ok ? "" : d.msg);
+    mc_image_free(&raw);
+    mcrt_render_free(r);
+    mcrt_scene_free(s);
+    unlink(path);
+}
 
 int main(void)
 {
@@ -88,6 +150,7 @@ int main(void)
     mcrt_render_free(r);
     mcrt_scene_free(s);
     unlink(path);
+    mirror(path);
     rmdir(dir);
     return t_done();
 }

@@ -261,7 +261,7 @@ struct img { int w, h; double *v; }; /* green channel */
 
 static int render(const char *text, int spp, uint64_t seed, struct img *out)
 {
-    struct t_render_opts o = {0, 0, 0, 0, NULL};
+    struct t_render_opts o = {0, 0, 0, 0, NULL, NULL};
     float *px;
     int i;
     memset(out, 0, sizeof *out);

@@ -17,7 +17,7 @@
 
 static float *render(const char *text, int all_features, int spp, int *w, int *h)
 {
-    struct t_render_opts o = {0, 2, 0, 11, NULL};
+    struct t_render_opts o = {0, 2, 0, 11, NULL, NULL};
     o.spp = spp;
     o.all_features = all_features;
     return t_render(text, &o, w, h, NULL);

@@ -681,7 +681,7 @@ static void test_bad_motion_index(void)
  * pixels (3 floats each, malloc'd) or NULL after printing why. */
 static float *render(const char *text, int spp, uint64_t seed, int threads, int *w, int *h)
 {
-    struct t_render_opts o = {0, 0, 0, 0, NULL};
+    struct t_render_opts o = {0, 0, 0, 0, NULL, NULL};
     o.spp = spp;
     o.seed = seed;
     o.threads = threads;

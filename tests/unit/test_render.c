@@ -24,7 +24,7 @@ struct img {
 /* Render scene text with the given options; returns 0 on success. */
 static int render(const char *text, int spp, int threads, const char *integrator, struct img *out)
 {
-    struct t_render_opts o = {0, 0, 0, 7, NULL};
+    struct t_render_opts o = {0, 0, 0, 7, NULL, NULL};
     memset(out, 0, sizeof *out);
     o.spp = spp;
     o.threads = threads;

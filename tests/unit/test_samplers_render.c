@@ -45,7 +45,7 @@ static const char dof[] =
 /* Render the scene on a 96×96 film with this sampler; the pixels (owned by the caller) or NULL. */
 static float *render(const char *scene, const char *sampler, int spp, uint64_t seed, int *npix)
 {
-    struct t_render_opts o = {0, 0, 0, 0, NULL};
+    struct t_render_opts o = {0, 0, 0, 0, NULL, NULL};
     char text[1024];
     int w = 0, h = 0;
     float *px;

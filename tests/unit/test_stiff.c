@@ -79,7 +79,7 @@ static int render_with(const char *what, const char *text, const struct t_render
 /* The same at spp with seed, everything else the library's default. */
 static int render_text(const char *what, const char *text, int spp, uint64_t seed, struct image *im)
 {
-    struct t_render_opts o = {0, 0, 0, 0, NULL};
+    struct t_render_opts o = {0, 0, 0, 0, NULL, NULL};
     o.spp = spp;
     o.seed = seed;
     return render_with(what, text, &o, im);
@@ -266,7 +266,7 @@ static void case_albedo(void)
     size_t i;
     T_CHECK(film != NULL, "%s", __func__);
     for (i = 0; film && i < sizeof c / sizeof c[0]; i++) {
-        struct t_render_opts o = {0, 2, 0, 1, "bsdf"};
+        struct t_render_opts o = {0, 2, 0, 1, "bsdf", NULL};
         char mat[64];
         char *text;
         struct image im;
@@ -558,7 +558,7 @@ static void case_grazing_light(void)
     T_NOTE("grazing light A at the origin: E/L %.9g by Lambert's formula, %.9g by quadrature", e, quad);
     T_CHECK(fabs(e - quad) <= 1e-5 * e, "%s: Lambert's formula", __func__);
     for (i = 0; base && i < sizeof c / sizeof c[0]; i++) {
-        struct t_render_opts o = {0, 0, 0, 1, NULL};
+        struct t_render_opts o = {0, 0, 0, 1, NULL, NULL};
         char *text = c[i].from ? subst(base, c[i].from, c[i].to) : base;
         struct image im;
         o.spp = c[i].spp;

@@ -54,7 +54,7 @@ static const char small_light[] =
 
 static float *render(const char *text, const char *integrator, int spp, uint64_t seed, int *w, int *h)
 {
-    struct t_render_opts o = {0, 2, 0, 0, NULL};
+    struct t_render_opts o = {0, 2, 0, 0, NULL, NULL};
     o.spp = spp;
     o.seed = seed;
     o.integrator = integrator;

@@ -1,0 +1,511 @@
+/* nfor.c: the NFOR-style denoiser (see nfor.h). */
+#include "denoise/nfor.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/alloc.h"
+#include "render/render.h"
+
+/* NFOR's parameters (Bitterli et al. 2016, §5; Tungsten's defaults): patch radius F, window
+ * radius R and bandwidth k of the feature prefilter, the regression and the smoothing of the
+ * error and selection maps. */
+#define PRE_F 3
+#define PRE_R 5
+#define PRE_K 0.5f
+#define REG_F 3
+#define REG_R 9
+#define MAP_F 1
+#define MAP_R 9
+#define MAP_K 1.0f
+static const float reg_k[2] = {0.5f, 1.0f};
+
+/* NL-means distances (Rousselle, Manzi and Zwicker 2012, eq. 3): the patch distance, with the
+ * variances' share taken off, over the variances; clamped so exp() stays finite. A weight never
+ * goes below MIN_WEIGHT at the pixel itself, and weights below SKIP_WEIGHT are left out of the
+ * sums (they change nothing visible and cost as much as the others). */
+#define DIST_EPS 1e-7f
+#define DIST_CLAMP 10000.0f
+#define MIN_WEIGHT 1e-4f
+#define SKIP_WEIGHT 1e-6f
+
+#define MAX_DIM (3 + MC_NFOR_MAX_FEATURES) /* regression columns: 1, x, y, the features */
+
+/* What NL-means weights are computed from: gc interleaved channels and their variances (scaled
+ * by vscale), patch radius f, bandwidth k. */
+struct guide {
+    const float *img, *var;
+    int gc, f;
+    float k, vscale;
+};
+
+/* The image's size, the threads the tiles run on, and a tile's failure to get memory. */
+struct pool {
+    int width, height, threads, ntx;
+    mcrt_status status;          /* MCRT_ERR_NOMEM when a tile could not get its buffers */
+};
+
+static int clampi(int v, int lo, int hi) { return v < lo ? lo : v > hi ? hi : v; }
+
+/* The NL-means weights of pixel p = (x, y) against p + (dx, dy), for every p of the tile
+ * [x0, x1) × [y0, y1), into wt (row-major, tile-sized). scratch holds 2·(T + 2f)²·gc floats.
+ * Pixels outside the image are read clamped to its border. */
+static void weights(const struct guide *g, int width, int height, int x0, int y0, int x1, int y1,
+                    int dx, int dy, float *wt, float *scratch)
+{
+    int f = g->f, pw = x1 - x0 + 2 * f, ph = y1 - y0 + 2 * f, gc = g->gc;
+    int tw = x1 - x0, x, y, c, i;
+    float *dist = scratch, *tmp = scratch + (size_t)pw * ph * gc;
+    float norm = 1.0f / (float)((2 * f + 1) * (2 * f + 1));
+    for (y = 0; y < ph; y++) {
+        int py = clampi(y0 - f + y, 0, height - 1), qy = clampi(y0 - f + y + dy, 0, height - 1);
+        for (x = 0; x < pw; x++) {
+            int px = clampi(x0 - f + x, 0, width - 1), qx = clampi(x0 - f + x + dx, 0, width - 1);
+            size_t p = ((size_t)py * width + px) * gc, q = ((size_t)qy * width + qx) * gc;
+            for (c = 0; c < gc; c++) {
+                float vp = g->var[p + c] * g->vscale, vq = g->var[q + c] * g->vscale;
+                float diff = g->img[p + c] - g->img[q + c];
+                float dd = (diff * diff - (vp + (vp < vq ? vp : vq)))
+                           / (DIST_EPS + g->k * g->k * (vp + vq));
+                dist[((size_t)y * pw + x) * gc + c] = dd < DIST_CLAMP ? dd : DIST_CLAMP;
+            }
+        }
+    }
+    /* The box filter over the patch, separably: rows into tmp, then columns. */
+    for (y = 0; y < ph; y++)
+        for (x = 0; x < tw; x++)
+            for (c = 0; c < gc; c++) {
+                float s = 0.0f;
+                for (i = 0; i <= 2 * f; i++)
+                    s += dist[((size_t)y * pw + x + i) * gc + c];
+                tmp[((size_t)y * tw + x) * gc + c] = s;
+            }
+    for (y = 0; y < y1 - y0; y++)
+        for (x = 0; x < tw; x++) {
+            float dmax = 0.0f;
+            for (c = 0; c < gc; c++) {
+                float s = 0.0f;
+                for (i = 0; i <= 2 * f; i++)
+                    s += tmp[((size_t)(y + i) * tw + x) * gc + c];
+                s *= norm;
+                dmax = s > dmax ? s : dmax;
+            }
+            /* The least similar channel decides (Tungsten takes the minimum weight). */
+            wt[(size_t)y * tw + x] = expf(-dmax);
+            if (dx == 0 && dy == 0 && wt[(size_t)y * tw + x] < MIN_WEIGHT)
+                wt[(size_t)y * tw + x] = MIN_WEIGHT;
+        }
+}
+
+static size_t scratch_floats(const struct guide *g)
+{
+    size_t p = (size_t)(MC_TILE + 2 * g->f);
+    return 2 * p * p * (size_t)g->gc;
+}
+
+/* Run fn over the tiles of the image on the pool's threads. */
+static mcrt_status run(struct pool *pl, mc_tile_fn fn, void *ctx, mc_diag *d)
+{
+    struct render_settings rs;
+    struct tile_result tr;
+    mcrt_status st;
+    memset(&rs, 0, sizeof rs);
+    rs.threads = pl->threads;
+    pl->status = MCRT_OK;
+    st = mc_tiles_run(&rs, 0, 0, pl->width, pl->height, fn, ctx, &tr, d);
+    if (st == MCRT_OK && pl->status != MCRT_OK)
+        st = mc_fail(d, pl->status, "out of memory for the denoiser's tiles");
+    return st;
+}
+
+/* ---- NL-means: dst = the weighted mean of src (sc channels) over a window of radius r. ---- */
+
+struct nlm_job {
+    struct pool *pl;
+    const struct guide *g;
+    const float *src;
+    int sc, r;
+    float *dst;
+};
+
+static void nlm_tile(void *ctx, struct tile_worker *w, int x0, int y0, int x1, int y1)
+{
+    struct nlm_job *j = ctx;
+    int width = j->pl->width, height = j->pl->height, tw = x1 - x0, th = y1 - y0;
+    int sc = j->sc, dx, dy, x, y, c;
+    size_t np = (size_t)tw * th;
+    float *wt = mc_malloc((np + scratch_floats(j->g)) * sizeof *wt);
+    double *acc = mc_calloc(np * (size_t)(sc + 1), sizeof *acc);
+    (void)w;
+    if (!wt || !acc) {
+        j->pl->status = MCRT_ERR_NOMEM;
+        free(wt);
+        free(acc);
+        return;
+    }
+    for (dy = -j->r; dy <= j->r; dy++)
+        for (dx = -j->r; dx <= j->r; dx++) {
+            weights(j->g, width, height, x0, y0, x1, y1, dx, dy, wt, wt + np);
+            for (y = y0; y < y1; y++) {
+                if (y + dy < 0 || y + dy >= height)
+                    continue;
+                for (x = x0; x < x1; x++) {
+                    size_t l = (size_t)(y - y0) * tw + (size_t)(x - x0);
+                    const float *s = j->src + ((size_t)(y + dy) * width + (size_t)(x + dx)) * sc;
+                    if (x + dx < 0 || x + dx >= width || wt[l] < SKIP_WEIGHT)
+                        continue;
+                    for (c = 0; c < sc; c++)
+                        acc[l * (sc + 1) + c] += wt[l] * s[c];
+                    acc[l * (sc + 1) + sc] += wt[l];
+                }
+            }
+        }
+    for (y = y0; y < y1; y++)
+        for (x = x0; x < x1; x++) {
+            size_t l = (size_t)(y - y0) * tw + (size_t)(x - x0);
+            for (c = 0; c < sc; c++)
+                j->dst[((size_t)y * width + x) * sc + c] =
+                    (float)(acc[l * (sc + 1) + c] / acc[l * (sc + 1) + sc]);
+        }
+    free(wt);
+    free(acc);
+}
+
+static mcrt_status nlm(struct pool *pl, const struct guide *g, const float *src, int sc, int r,
+                       float *dst, mc_diag *d)
+{
+    struct nlm_job j;
+    j.pl = pl;
+    j.g = g;
+    j.src = src;
+    j.sc = sc;
+    j.r = r;
+    j.dst = dst;
+    return run(pl, nlm_tile, &j, d);
+}
+
+/* ---- First-order regression (NFOR §5.2) ---- */
+
+/* Solve the normal equations M β = b (M: n×n symmetric, b: n×3) by an LDLᵀ factorisation that
+ * drops the columns adding nothing to the ones before (a pivot below 1e-7 of its diagonal: a
+ * feature constant over the window, or a copy of another), whose coefficients are then 0 -- the
+ * basic least-squares solution a pivoted QR gives, at a fraction of the cost. */
+static void solve(double *M, int n, double *b)
+{
+    double D[MAX_DIM];
+    int i, j, k, c;
+    for (j = 0; j < n; j++) {
+        double djj = M[j * n + j], diag = M[j * n + j];
+        for (k = 0; k < j; k++)
+            djj -= M[j * n + k] * M[j * n + k] * D[k];
+        D[j] = djj > 1e-7 * diag && diag > 1e-30 ? djj : 0.0;
+        for (i = j + 1; i < n; i++) {
+            double s = M[i * n + j];
+            if (D[j] == 0.0) {
+                M[i * n + j] = 0.0;
+                continue;
+            }
+            for (k = 0; k < j; k++)
+                s -= M[i * n + k] * M[j * n + k] * D[k];
+            M[i * n + j] = s / D[j];
+        }
+    }
+    for (c = 0; c < 3; c++) {
+        for (i = 0; i < n; i++)
+            for (k = 0; k < i; k++)
+                b[i * 3 + c] -= M[i * n + k] * b[k * 3 + c];
+        for (i = 0; i < n; i++)
+            b[i * 3 + c] = D[i] != 0.0 ? b[i * 3 + c] / D[i] : 0.0;
+        for (i = n - 1; i >= 0; i--)
+            for (k = i + 1; k < n; k++)
+                b[i * 3 + c] -= M[k * n + i] * b[k * 3 + c];
+    }
+}
+
+struct reg_job {
+    struct pool *pl;
+    const struct guide *g;
+    const float *img;          /* the colour regressed (3 channels) */
+    const float *const *feat;  /* nf planes */
+    int nf;
+    float **acc;               /* per tile: (T + 2R)² × 4 floats (Σ w·ŷ, Σ w), or NULL */
+};
+
+static void reg_tile(void *ctx, struct tile_worker *w, int x0, int y0, int x1, int y1)
+{
+    struct reg_job *j = ctx;
+    const int R = REG_R, side = 2 * REG_R + 1, nd = 3 + j->nf;
+    int width = j->pl->width, height = j->pl->height, tw = x1 - x0, th = y1 - y0;
+    int aw = tw + 2 * R, dx, dy, x, y, c, a, b, o;
+    size_t np = (size_t)tw * th;
+    float *wt = mc_malloc((np * (size_t)(side * side) + scratch_floats(j->g)) * sizeof *wt);
+    float *acc = mc_calloc((size_t)aw * (size_t)(th + 2 * R) * 4, sizeof *acc);
+    size_t ti = (size_t)(y0 / MC_TILE) * (size_t)j->pl->ntx + (size_t)(x0 / MC_TILE);
+    (void)w;
+    if (!wt || !acc) {
+        j->pl->status = MCRT_ERR_NOMEM;
+        free(wt);
+        free(acc);
+        return;
+    }
+    for (o = 0, dy = -R; dy <= R; dy++)
+        for (dx = -R; dx <= R; dx++, o++)
+            weights(j->g, width, height, x0, y0, x1, y1, dx, dy, wt + (size_t)o * np,
+                    wt + (size_t)side * side * np);
+    for (y = y0; y < y1; y++)
+        for (x = x0; x < x1; x++) {
+            size_t l = (size_t)(y - y0) * tw + (size_t)(x - x0), p = (size_t)y * width + x;
+            double M[MAX_DIM * MAX_DIM], B[MAX_DIM * 3], row[MAX_DIM];
+            memset(M, 0, sizeof M);
+            memset(B, 0, sizeof B);
+            /* Weighted sums over the window: X^T W X and X^T W Y, the upper triangle. */
+            for (o = 0, dy = -R; dy <= R; dy++)
+                for (dx = -R; dx <= R; dx++, o++) {
+                    size_t q = (size_t)(y + dy) * width + (size_t)(x + dx);
+                    double wq = wt[(size_t)o * np + l];
+                    if (x + dx < 0 || x + dx >= width || y + dy < 0 || y + dy >= height
+                        || wq < SKIP_WEIGHT)
+                        continue;
+                    row[0] = 1.0;
+                    row[1] = dx;
+                    row[2] = dy;
+                    for (a = 0; a < j->nf; a++)
+                        row[3 + a] = (double)j->feat[a][q] - j->feat[a][p];
+                    for (a = 0; a < nd; a++) {
+                        double wa = wq * row[a];
+                        for (b = a; b < nd; b++)
+                            M[a * nd + b] += wa * row[b];
+                        for (c = 0; c < 3; c++)
+                            B[a * 3 + c] += wa * j->img[q * 3 + c];
+                    }
+                }
+            for (a = 0; a < nd; a++)
+                for (b = 0; b < a; b++)
+                    M[a * nd + b] = M[b * nd + a];
+            solve(M, nd, B);
+            /* The local fit evaluated over the window, weighted by the same weights (the
+             * collaborative step): every pixel is the mean of the fits that cover it. */
+            for (o = 0, dy = -R; dy <= R; dy++)
+                for (dx = -R; dx <= R; dx++, o++) {
+                    size_t q = (size_t)(y + dy) * width + (size_t)(x + dx);
+                    float wq = wt[(size_t)o * np + l];
+                    float *t = acc + ((size_t)(y - y0 + R + dy) * aw + (size_t)(x - x0 + R + dx)) * 4;
+                    if (x + dx < 0 || x + dx >= width || y + dy < 0 || y + dy >= height
+                        || wq < SKIP_WEIGHT)
+                        continue;
+                    row[0] = 1.0;
+                    row[1] = dx;
+                    row[2] = dy;
+                    for (a = 0; a < j->nf; a++)
+                        row[3 + a] = (double)j->feat[a][q] - j->feat[a][p];
+                    for (c = 0; c < 3; c++) {
+                        double v = 0.0;
+                        for (a = 0; a < nd; a++)
+                            v += row[a] * B[a * 3 + c];
+                        t[c] += wq * (float)v;
+                    }
+                    t[3] += wq;
+                }
+        }
+    free(wt);
+    j->acc[ti] = acc;
+}
+
+/* Â: the colour img regressed on the features feat with weights from guide g, into out. */
+static mcrt_status regress(struct pool *pl, const struct guide *g, const float *img,
+                           const float *const *feat, int nf, float *out, mc_diag *d)
+{
+    int nty = (pl->height + MC_TILE - 1) / MC_TILE, tx, ty, x, y, c;
+    size_t i, n = (size_t)pl->width * (size_t)pl->height;
+    struct reg_job j;
+    mcrt_status st;
+    double *sum;
+    j.pl = pl;
+    j.g = g;
+    j.img = img;
+    j.feat = feat;
+    j.nf = nf;
+    j.acc = mc_calloc((size_t)pl->ntx * (size_t)nty, sizeof *j.acc);
+    sum = mc_calloc(n * 4, sizeof *sum);
+    if (!j.acc || !sum) {
+        free(j.acc);
+        free(sum);
+        return mc_fail(d, MCRT_ERR_NOMEM, "out of memory for the denoiser");
+    }
+    st = run(pl, reg_tile, &j, d);
+    /* The tiles' overlapping sums, in tile order whatever the threads' order was. */
+    for (ty = 0; ty < nty; ty++)
+        for (tx = 0; tx < pl->ntx; tx++) {
+            float *acc = j.acc[(size_t)ty * pl->ntx + tx];
+            int x0 = tx * MC_TILE - REG_R, y0 = ty * MC_TILE - REG_R;
+            int aw = (tx * MC_TILE + MC_TILE > pl->width ? pl->width - tx * MC_TILE : MC_TILE)
+                     + 2 * REG_R;
+            int ah = (ty * MC_TILE + MC_TILE > pl->height ? pl->height - ty * MC_TILE : MC_TILE)
+                     + 2 * REG_R;
+            if (!acc)
+                continue;
+            for (y = 0; y < ah; y++)
+                for (x = 0; x < aw; x++) {
+                    if (x0 + x < 0 || x0 + x >= pl->width || y0 + y < 0 || y0 + y >= pl->height)
+                        continue;
+                    for (c = 0; c < 4; c++)
+                        sum[((size_t)(y0 + y) * pl->width + (size_t)(x0 + x)) * 4 + c] +=
+                            acc[((size_t)y * aw + x) * 4 + c];
+                }
+            free(acc);
+        }
+    for (i = 0; i < n; i++)
+        for (c = 0; c < 3; c++)
+            out[i * 3 + c] = (float)(sum[i * 4 + c] / sum[i * 4 + 3]);
+    free(j.acc);
+    free(sum);
+    return st;
+}
+
+/* ---- The pipeline ---- */
+
+static float sq(float x) { return x * x; }
+
+/* The 3×3 box mean of v (nc channels): variance estimates of one degree of freedom each made
+ * steadier for the weights (the error estimates use the unsmoothed ones, which are unbiased). */
+static void box3(const float *v, int nc, int width, int height, float *out)
+{
+    int x, y, c, i, k;
+    for (y = 0; y < height; y++)
+        for (x = 0; x < width; x++)
+            for (c = 0; c < nc; c++) {
+                float s = 0.0f;
+                for (i = -1; i <= 1; i++)
+                    for (k = -1; k <= 1; k++)
+                        s += v[((size_t)clampi(y + i, 0, height - 1) * width
+                                + (size_t)clampi(x + k, 0, width - 1)) * nc + c];
+                out[((size_t)y * width + x) * nc + c] = s / 9.0f;
+            }
+}
+
+/* MSE of the mean of candidates fa (filtered from B's guides) and fb, per pixel (nfor.h). */
+static void mse_estimate(const float *A, const float *B, const float *fa, const float *fb,
+                         const float *var_half, size_t n3, float *out)
+{
+    size_t i;
+    for (i = 0; i < n3; i++)
+        out[i] = 0.5f * (sq(B[i] - fa[i]) - var_half[i] + sq(A[i] - fb[i]) - var_half[i])
+                 - 0.25f * sq(fa[i] - fb[i]);
+}
+
+mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb, float *mse,
+                            mc_diag *d)
+{
+    int w = in->width, h = in->height, nf = in->nfeatures, f, half, k;
+    size_t n = (size_t)w * (size_t)h, n3 = n * 3, i;
+    const float *A = in->color[0], *B = in->color[1];
+    const float *const *E = in->emission;
+    /* One block of floats: 3-channel images, then feature planes. */
+    enum { VAR, VARS, MEAN, CAND, MSE0 = CAND + 4, MSE1, TMP, SEL, CA, CB, NIMG };
+    float *buf = mc_malloc((n3 * NIMG + n * (size_t)(2 * nf + 2)) * sizeof *buf);
+    float *img[NIMG], *pre[2][MC_NFOR_MAX_FEATURES], *fvar, *fvars;
+    const float *cpre[2][MC_NFOR_MAX_FEATURES];
+    struct pool pl;
+    struct guide g;
+    mcrt_status st = MCRT_OK;
+    if (!buf)
+        return mc_fail(d, MCRT_ERR_NOMEM, "out of memory for the denoiser (%dx%d)", w, h);
+    for (i = 0; i < NIMG; i++)
+        img[i] = buf + i * n3;
+    for (f = 0; f < nf; f++)
+        for (half = 0; half < 2; half++)
+            cpre[half][f] = pre[half][f] = buf + NIMG * n3 + (size_t)(2 * f + half) * n;
+    fvar = buf + NIMG * n3 + (size_t)(2 * nf) * n;
+    fvars = fvar + n;
+    pl.width = w;
+    pl.height = h;
+    pl.threads = threads;
+    pl.ntx = (w + MC_TILE - 1) / MC_TILE;
+
+    /* The emission, taken out of the colour. */
+    if (E[0]) {
+        for (i = 0; i < n3; i++) {
+            img[CA][i] = A[i] - E[0][i];
+            img[CB][i] = B[i] - E[1][i];
+        }
+        A = img[CA];
+        B = img[CB];
+    }
+
+    /* The variance of one half per pixel, (A − B)²/2 (film.h), and of the mean, a quarter. */
+    for (i = 0; i < n3; i++) {
+        img[VAR][i] = 0.5f * sq(A[i] - B[i]);
+        img[MEAN][i] = 0.5f * (A[i] + B[i]);
+    }
+    box3(img[VAR], 3, w, h, img[VARS]);
+
+    /* 1. Cross prefiltering of the features (NFOR §5.1): A's feature with weights from B's, whose
+     * variance, that of a half, is (f_A − f_B)²/2. */
+    for (f = 0; f < nf && st == MCRT_OK; f++) {
+        for (i = 0; i < n; i++)
+            fvar[i] = 0.5f * sq(in->feature[0][f][i] - in->feature[1][f][i]);
+        box3(fvar, 1, w, h, fvars);
+        for (half = 0; half < 2 && st == MCRT_OK; half++) {
+            g.img = in->feature[1 - half][f];
+            g.var = fvars;
+            g.gc = 1;
+            g.f = PRE_F;
+            g.k = PRE_K;
+            g.vscale = 1.0f;
+            st = nlm(&pl, &g, in->feature[half][f], 1, PRE_R, pre[half][f], d);
+        }
+    }
+
+    /* 2. Each half regressed on the other half's features with the other half's weights, for
+     * two bandwidths; 3. their errors. */
+    for (k = 0; k < 2 && st == MCRT_OK; k++) {
+        float *ca = img[CAND + 2 * k], *cb = img[CAND + 2 * k + 1];
+        g.gc = 3;
+        g.f = REG_F;
+        g.k = reg_k[k];
+        g.var = img[VARS];
+        g.vscale = 1.0f;
+        g.img = B;
+        st = regress(&pl, &g, A, cpre[1], nf, ca, d);
+        g.img = A;
+        if (st == MCRT_OK)
+            st = regress(&pl, &g, B, cpre[0], nf, cb, d);
+        if (st != MCRT_OK)
+            break;
+        mse_estimate(A, B, ca, cb, img[VAR], n3, img[TMP]);
+        /* Smoothed by NL-means on the mean image, whose variance is half a half's. */
+        g.img = img[MEAN];
+        g.f = MAP_F;
+        g.k = MAP_K;
+        g.vscale = 0.5f;
+        st = nlm(&pl, &g, img[TMP], 3, MAP_R, img[MSE0 + k], d);
+    }
+    if (st == MCRT_OK) {
+        /* The selection map, 0 for the first candidate, 1 for the second, smoothed the same
+         * way, blends them per pixel and channel. */
+        for (i = 0; i < n3; i++)
+            img[TMP][i] = img[MSE0][i] < img[MSE1][i] ? 0.0f : 1.0f;
+        st = nlm(&pl, &g, img[TMP], 3, MAP_R, img[SEL], d);
+    }
+    if (st == MCRT_OK) {
+        float *fa = img[MSE0], *fb = img[MSE1]; /* reused for the blended halves */
+        for (i = 0; i < n3; i++) {
+            float s = img[SEL][i];
+            fa[i] = img[CAND][i] + s * (img[CAND + 2][i] - img[CAND][i]);
+            fb[i] = img[CAND + 1][i] + s * (img[CAND + 3][i] - img[CAND + 1][i]);
+            rgb[i] = 0.5f * (fa[i] + fb[i]);
+        }
+        if (mse)
+            mse_estimate(A, B, fa, fb, img[VAR], n3, mse);
+        /* The emission back, unfiltered, and its variance: its error and the rest's add, as
+         * the rest's filter never sees it. */
+        for (i = 0; E[0] && i < n3; i++) {
+            rgb[i] += 0.5f * (E[0][i] + E[1][i]);
+            if (mse)
+                mse[i] += in->emission_var[i];
+        }
+    }
+    free(buf);
+    return st;
+}

@@ -1,0 +1,60 @@
+/* nfor.h: an image-space denoiser for Monte Carlo renders that estimates its own error, after
+ * NFOR (Bitterli, Rousselle, Moon, Iglesias-Guitián, Adler, Mitchell, Jarosz and Novák 2016,
+ * "Nonlinearly Weighted First-order Regression for Denoising Monte Carlo Renderings", EGSR).
+ *
+ * It takes the two independent half buffers of a render (render/film.h: A and B, each the mean
+ * of half of every pixel's samples) and, per half, feature planes (albedo, normal, depth...):
+ *   1. each feature of one half is filtered by NL-means with weights from the other half's
+ *      (cross prefiltering, NFOR §5.1), so that the features' own noise is filtered and what
+ *      filters A stays independent of A;
+ *   2. each half's colour is regressed, in a window around every pixel, as an affine function of
+ *      the other half's prefiltered features and of screen position, with NL-means weights from
+ *      the other half's colour (first-order regression, §5.2), for two bandwidths k; every
+ *      pixel's local fit is evaluated over its whole window and the fits averaged by their
+ *      weights (collaborative filtering, §5.2);
+ *   3. each candidate's error is estimated from the halves (§5.3): Â, filtered from B's guides,
+ *      has E[(B − Â)²] ≈ MSE(Â) + Var(B), so that the mean D = (Â + B̂)/2 has
+ *          MSE(D) ≈ ½[(B − Â)² − Var(B) + (A − B̂)² − Var(A)] − ¼(Â − B̂)²,
+ *      the last term exact from ((a + b)/2)² = (a² + b²)/2 − ((a − b)/2)²; the error maps and the
+ *      choice between the candidates are smoothed by NL-means and the candidates blended per
+ *      pixel by that choice;
+ *   4. the same estimate of the blended result is returned per pixel: summed over an image, the
+ *      denoised image's error without a reference.
+ * NFOR's second pass (§5.4) is left out: it would need its own error estimate.
+ *
+ * An optional emission per half (the light emitted towards the camera by the first surfaces,
+ * render/aov.h) is the part of the colour that needs no regression: it is taken out of each half
+ * before step 2, so that a light seen directly cannot bleed into its neighbours (the first-order
+ * regression alone put 77% of its error in the 20 pixels around the Cornell box's light,
+ * estimators-anchor.md §2), and added back unfiltered after, its variance added to the error
+ * estimate. That variance comes with it, from the samples rather than the halves: its noise is
+ * a light edge's coverage by a pixel's rays, which the two halves of a pixel on the light's
+ * corner often agree on by chance (one degree of freedom), when its samples show it clearly.
+ *
+ * Tiles of the image run on the render's thread pool (render/tiles.h); every tile writes only
+ * its own buffers, and overlapping contributions are summed in tile order afterwards, so the
+ * result is bit-identical for any thread count. */
+#ifndef MCRT_NFOR_H
+#define MCRT_NFOR_H
+
+#include "core/diag.h"
+
+enum { MC_NFOR_MAX_FEATURES = 16 };
+
+struct nfor_input {
+    int width, height;
+    const float *color[2];   /* half A and half B: W·H·3 floats each, linear RGB */
+    int nfeatures;           /* 0 to MC_NFOR_MAX_FEATURES */
+    const float *feature[2][MC_NFOR_MAX_FEATURES]; /* per half, planes of W·H floats */
+    const float *emission[2]; /* per half, W·H·3 floats, part of color; NULL: none */
+    const float *emission_var; /* W·H·3 floats: the variance of the emission's pixel mean */
+};
+
+/* Denoise in on `threads` threads: rgb receives the denoised mean image (W·H·3 floats) and mse,
+ * when not NULL, the per-pixel estimate of its squared error (step 4 above; unbiased terms, so
+ * a single pixel's may be negative: only sums over many pixels mean much). Returns MCRT_OK, or
+ * MCRT_ERR_NOMEM. */
+mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb, float *mse,
+                            mc_diag *d);
+
+#endif

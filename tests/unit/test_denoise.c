@@ -1,0 +1,168 @@
+/* test_denoise.c: the NFOR denoiser (src/denoise/nfor.h) on synthetic half buffers whose truth is
+ * known: a true image T, and halves A = T + noise and B = T + noise of independent Gaussian noise
+ * of standard deviation SIGMA, with noise-free or noisy features. Checks: a flat image stays flat
+ * and keeps its mean, a step edge and a one-pixel bright line keep their contrast, the estimated
+ * error is within a factor 2 of the true one, and the result is the same for 1, 2 and 3 threads.
+ * Each tolerance is derived from the noise, next to its check. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/rng.h"
+#include "denoise/nfor.h"
+#include "t.h"
+
+enum { W = 64, H = 48, N = W * H };
+#define SIGMA 0.1 /* the noise of one half; the raw mean's is SIGMA/sqrt(2) */
+
+struct bufs {
+    float truth[N * 3], half[2][N * 3], feat[2][2][N]; /* two feature planes per half */
+    float rgb[N * 3], mse[N * 3];
+};
+
+static double gauss(pcg32 *g)
+{
+    double u = pcg32_double(g), v = pcg32_double(g);
+    return sqrt(-2.0 * log(1.0 - u)) * cos(6.283185307179586 * v);
+}
+
+/* Halves = truth + noise; feature 0 = f0 (with noise fsigma per half), feature 1 = 1. */
+static void make(struct bufs *b, const float *f0, double fsigma, uint64_t seed)
+{
+    pcg32 g;
+    int i, h;
+    pcg32_seed(&g, seed, 7);
+    for (h = 0; h < 2; h++) {
+        for (i = 0; i < N * 3; i++)
+            b->half[h][i] = (float)(b->truth[i] + SIGMA * gauss(&g));
+        for (i = 0; i < N; i++) {
+            b->feat[h][0][i] = (float)(f0[i] + fsigma * gauss(&g));
+            b->feat[h][1][i] = 1.0f;
+        }
+    }
+}
+
+static mcrt_status run(struct bufs *b, int threads)
+{
+    struct nfor_input in;
+    mc_diag d;
+    int h;
+    in.width = W;
+    in.height = H;
+    in.nfeatures = 2;
+    in.emission[0] = in.emission[1] = NULL;
+    for (h = 0; h < 2; h++) {
+        in.color[h] = b->half[h];
+        in.feature[h][0] = b->feat[h][0];
+        in.feature[h][1] = b->feat[h][1];
+    }
+    return mc_nfor_denoise(&in, threads, b->rgb, b->mse, &d);
+}
+
+static double mean(const float *v, size_t n)
+{
+    double s = 0.0;
+    size_t i;
+    for (i = 0; i < n; i++)
+        s += v[i];
+    return s / (double)n;
+}
+
+/* The relMSE of the denoised image, true (est 0) or from the denoiser's per-pixel estimate
+ * (est 1), over the true (truth² + 0.01): this checks the error estimate itself, apart from the
+ * estimate of the denominator, which is the film's (render/film.h). */
+static double relmse(const struct bufs *b, int est)
+{
+    double s = 0.0;
+    int i;
+    for (i = 0; i < N * 3; i++)
+        s += (est ? b->mse[i] : (b->rgb[i] - b->truth[i]) * (b->rgb[i] - b->truth[i]))
+             / (b->truth[i] * b->truth[i] + 0.01);
+    return s / (N * 3);
+}
+
+int main(void)
+{
+    static struct bufs b, c;
+    static float f0[N];
+    double raw_mean, sum, sum2, est, tru;
+    int i, x, y, t;
+
+    /* Flat: T = 0.5 everywhere, a noisy flat feature. The raw mean of all N·3 values has the
+     * standard error (SIGMA/√2)/√(3N) = 0.0007 (0.14% of 0.5): the denoised mean must stay within
+     * the issue's 1% of it. Flat: the denoised pixels' standard deviation must be below a third
+     * of the raw's SIGMA/√2 (a window of 19² pixels averages far more). */
+    for (i = 0; i < N * 3; i++)
+        b.truth[i] = 0.5f;
+    for (i = 0; i < N; i++)
+        f0[i] = 0.3f;
+    make(&b, f0, 0.05, 1);
+    T_CHECK(run(&b, 2) == MCRT_OK, "denoise");
+    raw_mean = 0.5 * (mean(b.half[0], N * 3) + mean(b.half[1], N * 3));
+    T_NEAR(mean(b.rgb, N * 3), raw_mean, 0.01 * raw_mean, "flat: the mean is kept");
+    for (sum = sum2 = 0.0, i = 0; i < N * 3; i++) {
+        sum += b.rgb[i];
+        sum2 += b.rgb[i] * b.rgb[i];
+    }
+    sum = sqrt(sum2 / (N * 3) - (sum / (N * 3)) * (sum / (N * 3)));
+    T_NOTE("flat: denoised std %.4g against the raw %.4g", sum, SIGMA / sqrt(2.0));
+    T_CHECK(sum < SIGMA / sqrt(2.0) / 3.0, "flat: std %.4g", sum);
+
+    /* 1, 2 and 3 threads: bit for bit the same. */
+    memcpy(&c, &b, sizeof c);
+    for (t = 1; t <= 3; t += 2) {
+        T_CHECK(run(&c, t) == MCRT_OK, "denoise");
+        T_CHECK(memcmp(c.rgb, b.rgb, sizeof b.rgb) == 0 && memcmp(c.mse, b.mse, sizeof b.mse) == 0,
+                "%d threads differ from 2", t);
+    }
+
+    /* Step edge: 0.2 left of x = 32, 0.8 right of it, in the colour and (noise-free) in the
+     * feature. The mean over a column of H·3 values has the raw standard error
+     * (SIGMA/√2)/√(3H) = 0.006; the denoised columns next to the edge must keep their value
+     * within 0.03 (5 of those), i.e. the edge keeps its contrast and does not bleed. */
+    for (y = 0; y < H; y++)
+        for (x = 0; x < W; x++) {
+            float v = x < W / 2 ? 0.2f : 0.8f;
+            f0[y * W + x] = v;
+            for (i = 0; i < 3; i++)
+                b.truth[(y * W + x) * 3 + i] = v;
+        }
+    make(&b, f0, 0.0, 2);
+    T_CHECK(run(&b, 2) == MCRT_OK, "denoise");
+    for (x = W / 2 - 2; x < W / 2 + 2; x++) {
+        for (sum = 0.0, y = 0; y < H; y++)
+            for (i = 0; i < 3; i++)
+                sum += b.rgb[(y * W + x) * 3 + i];
+        T_NEAR(sum / (3 * H), x < W / 2 ? 0.2 : 0.8, 0.03, "step: column %d", x);
+    }
+    /* The estimated relMSE within a factor 2 of the truth (the target). */
+    est = relmse(&b, 1);
+    tru = relmse(&b, 0);
+    T_NOTE("step: relMSE raw %.4g, denoised true %.4g, estimated %.4g",
+           SIGMA * SIGMA / 2 * (0.5 / (0.04 + 0.01) + 0.5 / (0.64 + 0.01)), tru, est);
+    T_CHECK(est > tru / 2 && est < tru * 2, "step: estimated %.4g, true %.4g", est, tru);
+
+    /* A one-pixel bright line, 5 on 0.5, at y = 20, marked by a noisy feature, its own noise
+     * (0.05 per half) prefiltered. The line's mean over W·3 values has the raw standard error
+     * (SIGMA/√2)/√(3W) = 0.005: it must stay within 0.05 of 5 (10 of those, 1% of the
+     * contrast), and the rows beside it within 0.05 of 0.5 (no halo). */
+    for (y = 0; y < H; y++)
+        for (x = 0; x < W; x++) {
+            float v = y == 20 ? 5.0f : 0.5f;
+            f0[y * W + x] = y == 20 ? 1.0f : 0.0f;
+            for (i = 0; i < 3; i++)
+                b.truth[(y * W + x) * 3 + i] = v;
+        }
+    make(&b, f0, 0.05, 3);
+    T_CHECK(run(&b, 2) == MCRT_OK, "denoise");
+    for (y = 19; y <= 21; y++) {
+        for (sum = 0.0, x = 0; x < W; x++)
+            for (i = 0; i < 3; i++)
+                sum += b.rgb[(y * W + x) * 3 + i];
+        T_NEAR(sum / (3 * W), y == 20 ? 5.0 : 0.5, 0.05, "line: row %d", y);
+    }
+    for (i = 0; i < N * 3 && isfinite(b.rgb[i]); i++)
+        ;
+    T_CHECK(i == N * 3, "no NaN");
+    return t_done();
+}
