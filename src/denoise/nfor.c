@@ -232,6 +232,19 @@ struct reg_job {
     float **acc;               /* per tile: (T + 2R)² × 4 floats (Σ w·ŷ, Σ w), or NULL */
 };
 
+/* The regression's row for neighbour q of pixel p at offset (dx, dy): 1, the offset, and each
+ * feature's difference from p's (the fit is centred on p). Both the fit and its evaluation over
+ * the window read the same row. */
+static void design_row(const struct reg_job *j, size_t q, size_t p, int dx, int dy, double *row)
+{
+    int a;
+    row[0] = 1.0;
+    row[1] = dx;
+    row[2] = dy;
+    for (a = 0; a < j->nf; a++)
+        row[3 + a] = (double)j->feat[a][q] - j->feat[a][p];
+}
+
 static void reg_tile(void *ctx, struct tile_worker *w, int x0, int y0, int x1, int y1)
 {
     struct reg_job *j = ctx;
@@ -267,11 +280,7 @@ static void reg_tile(void *ctx, struct tile_worker *w, int x0, int y0, int x1, i
                     if (x + dx < 0 || x + dx >= width || y + dy < 0 || y + dy >= height
                         || wq < SKIP_WEIGHT)
                         continue;
-                    row[0] = 1.0;
-                    row[1] = dx;
-                    row[2] = dy;
-                    for (a = 0; a < j->nf; a++)
-                        row[3 + a] = (double)j->feat[a][q] - j->feat[a][p];
+                    design_row(j, q, p, dx, dy, row);
                     for (a = 0; a < nd; a++) {
                         double wa = wq * row[a];
                         for (b = a; b < nd; b++)
@@ -294,11 +303,7 @@ static void reg_tile(void *ctx, struct tile_worker *w, int x0, int y0, int x1, i
                     if (x + dx < 0 || x + dx >= width || y + dy < 0 || y + dy >= height
                         || wq < SKIP_WEIGHT)
                         continue;
-                    row[0] = 1.0;
-                    row[1] = dx;
-                    row[2] = dy;
-                    for (a = 0; a < j->nf; a++)
-                        row[3 + a] = (double)j->feat[a][q] - j->feat[a][p];
+                    design_row(j, q, p, dx, dy, row);
                     for (c = 0; c < 3; c++) {
                         double v = 0.0;
                         for (a = 0; a < nd; a++)

@@ -54,7 +54,8 @@ struct film {
 int mc_film_init(struct film *f, int width, int height);
 void mc_film_free(struct film *f);
 
-/* The seed of half h (0 or 1) of a pass of this seed: half 0 keeps it. */
+/* The seed of half h (0 or 1) of a pass of this seed: half 0 keeps it. Any h >= 0 gives an
+ * independent seed (sppm.c keys its four groups of passes by it). */
 uint64_t mc_film_half_seed(uint64_t seed, int h);
 
 /* How many of a pass's n samples of a pixel go to half 0 (the rest go to half 1): half of them,
