@@ -15,8 +15,7 @@
 . tests/harness.sh.inc
 
 cp scenes/*.obj "$tmp"/ 2>/dev/null
-# stat FILE KEY: a number from a --stats JSON file.
-stat() { sed -n "s/^ *\"$2\": \\([^,]*\\),*\$/\\1/p" "$1"; }
+. tests/outputs.sh.inc
 
 # true_relmse SCENE OPTIONS...: render SCENE (seed 1) and print "EST TRUE": its estimated
 # relMSE and its relMSE against $tmp/ref.pfm minus the reference's own (in $ref_est).
@@ -24,17 +23,17 @@ true_relmse() {
     scene=$1
     shift
     "$MCRT" --quiet --seed 1 -o "$tmp/t.pfm" --stats "$tmp/t.json" "$@" "$scene" || return 1
-    d=$("$MCRT" diff "$tmp/t.pfm" "$tmp/ref.pfm" | sed -n 's/^whole image: .*relMSE \([^,]*\),.*/\1/p')
-    echo "$(stat "$tmp/t.json" est_relmse) $d $ref_est" | awk '{ print $1, $2 - $3 }'
+    d=$(diff_num relMSE "$tmp/t.pfm" "$tmp/ref.pfm")
+    echo "$(json_num "$tmp/t.json" est_relmse) $d $ref_est" | awk '{ print $1, $2 - $3 }'
 }
 
 # reference SCENE WIDTH HEIGHT: $s, SCENE with its film set to WIDTH x HEIGHT, and its 1024 spp
 # sobol reference of seed 99 in $tmp/ref.pfm, its own estimated relMSE in $ref_est.
 reference() {
-    sed -E "s/^film \\{[^}]*\\}/film { width $2 height $3 spp 16 }/" "scenes/$1.mcrt" >"$s"
+    film_size "scenes/$1.mcrt" "$2" "$3" | sed -E 's/^(film .*) spp [0-9]+/\1 spp 16/' >"$s"
     "$MCRT" --quiet --spp 1024 --sampler sobol --seed 99 -o "$tmp/ref.pfm" \
         --stats "$tmp/r.json" "$s" || return 1
-    ref_est=$(stat "$tmp/r.json" est_relmse)
+    ref_est=$(json_num "$tmp/r.json" est_relmse)
 }
 
 for name in soft-shadows cornell glossy; do
@@ -92,8 +91,8 @@ for name in soft-shadows cornell glossy; do
     for seed in 1 2 3 4; do
         "$MCRT" --quiet --seed "$seed" --spp 4 --target-error "$E" -o "$tmp/t.pfm" \
             --stats "$tmp/t.json" "$s" || break
-        d=$("$MCRT" diff "$tmp/t.pfm" "$tmp/ref.pfm" | sed -n 's/^whole image: .*relMSE \([^,]*\),.*/\1/p')
-        sum_est=$(echo "$sum_est $(stat "$tmp/t.json" est_relmse)" | awk '{ print $1 + $2 }')
+        d=$(diff_num relMSE "$tmp/t.pfm" "$tmp/ref.pfm")
+        sum_est=$(echo "$sum_est $(json_num "$tmp/t.json" est_relmse)" | awk '{ print $1 + $2 }')
         sum_true=$(echo "$sum_true $d $ref_est" | awk '{ print $1 + $2 - $3 }')
     done
     set -- $(echo "$sum_est $sum_true" | awk '{ print $1 / 4, $2 / 4 }')

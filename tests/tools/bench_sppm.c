@@ -10,33 +10,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "file_util.h"
 #include "mcrt.h"
 #include "median.h"
-
-/* The scene file with its film block replaced by `film` and `extra` appended. */
-static char *load(const char *path, const char *film, const char *extra)
-{
-    FILE *f = fopen(path, "rb");
-    char *t, *out = NULL, *at, *end;
-    long n;
-    if (!f)
-        return NULL;
-    fseek(f, 0, SEEK_END);
-    n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    t = calloc((size_t)n + 1, 1);
-    if (t && fread(t, 1, (size_t)n, f) == (size_t)n && (at = strstr(t, "\nfilm {")) != NULL
-        && (end = strchr(at, '}')) != NULL) {
-        out = calloc((size_t)n + strlen(film) + strlen(extra) + 4, 1);
-        if (out) {
-            at[1] = '\0';
-            sprintf(out, "%s%s%s\n%s\n", t, film, end + 1, extra);
-        }
-    }
-    free(t);
-    fclose(f);
-    return out;
-}
 
 /* Seconds of one render of `passes` passes of text on one thread; negative on failure. */
 static double render_seconds(const char *text, int passes, unsigned long long *rays)
@@ -88,7 +64,7 @@ int main(int argc, char **argv)
     snprintf(extra[1], sizeof extra[1], "integrator { photons %d }", 2 * P);
     snprintf(extra[2], sizeof extra[2], "integrator { photons %d  radius %g }", 2 * P, 2.0 * r0);
     for (k = 0; k < 3; k++) {
-        text[k] = load("scenes/cornell-spheres.mcrt", film, extra[k]);
+        text[k] = t_scene_with_film("scenes/cornell-spheres.mcrt", film, extra[k]);
         if (!text[k]) {
             fprintf(stderr, "bench_sppm: cannot read scenes/cornell-spheres.mcrt\n");
             return 1;

@@ -21,23 +21,17 @@ SAMPLERS=${SAMPLERS:-random stratified sobol}
 tmp=$(mktemp -d) || exit 2
 trap 'rm -rf "$tmp"' EXIT
 cp scenes/*.obj "$tmp"/ 2>/dev/null
-stat() { sed -n "s/^ *\"$2\": \\([^,]*\\),*\$/\\1/p" "$1"; }
-relmse() { "$MCRT" diff "$1" "$2" | sed -n 's/^whole image: .*relMSE \([^,]*\),.*/\1/p'; }
+. tests/outputs.sh.inc
 
 printf '%-16s %-10s %5s %11s %11s %6s%s\n' scene sampler spp est_relmse true_relmse ratio \
     "${BASE:+  base_relmse  new/base}"
 for scene in ${SCENES:-scenes/*.mcrt}; do
     name=$(basename "$scene" .mcrt)
     s="$tmp/$name.mcrt"
-    # The film's width and height divided by SHRINK (a scene without them gets the defaults).
-    awk -v k="$SHRINK" '/^film[ {]/ {
-            for (i = 1; i <= NF; i++)
-                if (($i == "width" || $i == "height") && $(i + 1) ~ /^[0-9]+$/)
-                    $(i + 1) = int($(i + 1) / k)
-        } { print }' "$scene" >"$s"
+    film_shrink "$scene" "$SHRINK" >"$s"
     "$MCRT" --quiet --sampler sobol --spp "$REF_SPP" --seed 9999 -o "$tmp/ref.pfm" \
         --stats "$tmp/ref.json" "$s" || { echo "$name: the reference did not render" >&2; continue; }
-    ref_est=$(stat "$tmp/ref.json" est_relmse)
+    ref_est=$(json_num "$tmp/ref.json" est_relmse)
     for sampler in $SAMPLERS; do
         for spp in $SPPS; do
             sum_est=0 sum_true=0 sum_base=0 k=1
@@ -45,13 +39,13 @@ for scene in ${SCENES:-scenes/*.mcrt}; do
                 if [ -n "$BASE" ]; then
                     "$BASE" --quiet --sampler "$sampler" --spp "$spp" --seed "$k" \
                         -o "$tmp/b.pfm" "$s" || exit 1
-                    sum_base=$(echo "$sum_base $(relmse "$tmp/b.pfm" "$tmp/ref.pfm") $ref_est" |
+                    sum_base=$(echo "$sum_base $(diff_num relMSE "$tmp/b.pfm" "$tmp/ref.pfm") $ref_est" |
                         awk '{ print $1 + $2 - $3 }')
                 fi
                 "$MCRT" --quiet --sampler "$sampler" --spp "$spp" --seed "$k" -o "$tmp/t.pfm" \
                     --stats "$tmp/t.json" "$s" || exit 1
-                sum_est=$(echo "$sum_est $(stat "$tmp/t.json" est_relmse)" | awk '{ print $1 + $2 }')
-                sum_true=$(echo "$sum_true $(relmse "$tmp/t.pfm" "$tmp/ref.pfm") $ref_est" |
+                sum_est=$(echo "$sum_est $(json_num "$tmp/t.json" est_relmse)" | awk '{ print $1 + $2 }')
+                sum_true=$(echo "$sum_true $(diff_num relMSE "$tmp/t.pfm" "$tmp/ref.pfm") $ref_est" |
                     awk '{ print $1 + $2 - $3 }')
                 k=$((k + 1))
             done

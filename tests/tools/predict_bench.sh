@@ -11,28 +11,24 @@ FIRST=${FIRST:-4}
 tmp=$(mktemp -d) || exit 2
 trap 'rm -rf "$tmp"' EXIT
 cp scenes/*.obj "$tmp"/ 2>/dev/null
-stat() { sed -n "s/^ *\"$2\": \\([^,]*\\),*\$/\\1/p" "$1"; }
+. tests/outputs.sh.inc
 
 printf '%-14s %10s %8s %7s %10s %10s %10s %6s\n' scene est seconds slope target predicted \
     measured ratio
 for scene in ${SCENES:-scenes/soft-shadows.mcrt scenes/cornell.mcrt scenes/glossy.mcrt}; do
     name=$(basename "$scene" .mcrt)
     s="$tmp/$name.mcrt"
-    awk -v k="$SHRINK" '/^film[ {]/ {
-            for (i = 1; i <= NF; i++)
-                if (($i == "width" || $i == "height") && $(i + 1) ~ /^[0-9]+$/)
-                    $(i + 1) = int($(i + 1) / k)
-        } { print }' "$scene" >"$s"
+    film_shrink "$scene" "$SHRINK" >"$s"
     "$MCRT" --quiet --spp 4 --time "$FIRST" --seed 1 -o "$tmp/a.pfm" \
         --stats "$tmp/a.json" "$s" || exit 1
-    est=$(stat "$tmp/a.json" est_relmse)
-    secs=$(stat "$tmp/a.json" seconds)
-    slope=$(stat "$tmp/a.json" relmse_slope)
+    est=$(json_num "$tmp/a.json" est_relmse)
+    secs=$(json_num "$tmp/a.json" seconds)
+    slope=$(json_num "$tmp/a.json" relmse_slope)
     target=$(echo "$est" | awk '{ printf "%.4g", $1 / 4 }')
     pred=$(echo "$secs $target $est $slope" | awk '{ printf "%.3f", $1 * ($2 / $3) ^ (1 / $4) }')
     "$MCRT" --quiet --spp 4 --target-error "$target" --seed 2 -o "$tmp/b.pfm" \
         --stats "$tmp/b.json" "$s" || exit 1
-    took=$(stat "$tmp/b.json" seconds)
+    took=$(json_num "$tmp/b.json" seconds)
     printf '%-14s %10.4g %8.2f %7.3f %10s %10s %10.2f %6.2f\n' "$name" "$est" "$secs" "$slope" \
         "$target" "$pred" "$took" "$(echo "$took $pred" | awk '{ print $1 / $2 }')"
 done

@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "core/rng.h"
+#include "file_util.h"
 #include "io/formats.h"
 #include "t.h"
 
@@ -35,27 +36,10 @@ static void put_file(const char *path, const void *data, size_t n)
         fclose(f);
 }
 
-/* The whole file in a new buffer (NULL if unreadable); *n gets its size. */
-static unsigned char *get_file(const char *path, size_t *n)
-{
-    FILE *f = fopen(path, "rb");
-    unsigned char *buf;
-    long size;
-    if (!f)
-        return NULL;
-    fseek(f, 0, SEEK_END);
-    size = ftell(f);
-    rewind(f);
-    buf = malloc((size_t)size + 1);
-    *n = buf ? fread(buf, 1, (size_t)size, f) : 0;
-    fclose(f);
-    return buf;
-}
-
 static int same_file(const char *path, const unsigned char *data, size_t n)
 {
     size_t m;
-    unsigned char *got = get_file(path, &m);
+    unsigned char *got = (unsigned char *)t_read_file(path, &m);
     int same = got && m == n && memcmp(got, data, n) == 0;
     free(got);
     return same;
@@ -205,7 +189,7 @@ static void test_pfm(void)
     mc_image_free(&im);
 
     /* The layout: the exact header, then little-endian floats, bottom row first. */
-    bytes = get_file(p, &n);
+    bytes = (unsigned char *)t_read_file(p, &n);
     T_CHECK(bytes && n == strlen(header) + (size_t)w * h * 12, "file size %zu", n);
     T_CHECK(bytes && memcmp(bytes, header, strlen(header)) == 0, "header");
     if (bytes) {
@@ -420,7 +404,7 @@ static void test_png(void)
     free(rgb);
 
     /* The sRGB chunk is there (with gAMA and cHRM for older readers), before IDAT. */
-    bytes = get_file(p, &n);
+    bytes = (unsigned char *)t_read_file(p, &n);
     for (k = 0, i = 8; bytes && i + 8 <= n; i += 12 + chunk_length(bytes + i)) {
         const unsigned char *type = bytes + i + 4;
         if (!memcmp(type, "IDAT", 4))
@@ -710,7 +694,7 @@ static void test_exr(void)
     free(rgb);
 
     /* Our header, read by hand: float B, G, R; ZIP; data window (0,0)-(w-1,h-1). */
-    bytes = get_file(p, &n);
+    bytes = (unsigned char *)t_read_file(p, &n);
     T_CHECK(bytes && n > 8 && !memcmp(bytes, "\x76\x2f\x31\x01", 4) && bytes[4] == 2 && !bytes[5],
             "EXR magic, version 2, single-part scanline");
     if (bytes) {
@@ -809,7 +793,7 @@ static void test_write(void)
     umask(022);
     T_CHECK(mc_image_write(at(p, "keep.pfm"), small, 4, 3, &d) == MCRT_OK, "%s", d.msg);
     T_CHECK(stat(p, &sb) == 0 && (sb.st_mode & 0777) == 0644, "mode %o", (unsigned)(sb.st_mode & 0777));
-    old = get_file(p, &oldn);
+    old = (unsigned char *)t_read_file(p, &oldn);
 
     /* Refusals before anything is created. */
     put_file(at(q, "keep.jpg"), "old", 3);
@@ -854,7 +838,7 @@ static void test_write(void)
         at(q, name);
         if (i > 0)
             T_CHECK(mc_image_write(q, small, 4, 3, &d) == MCRT_OK, "%s: %s", name, d.msg);
-        prev = get_file(q, &prevn);
+        prev = (unsigned char *)t_read_file(q, &prevn);
         setrlimit(RLIMIT_FSIZE, &lim);
         T_CHECK(mc_image_write(q, big, 64, 64, &d) == MCRT_ERR_IO, "%s: over the size limit", name);
         setrlimit(RLIMIT_FSIZE, &saved);

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "core/rng.h"
+#include "file_util.h"
 #include "scene/obj.h"
 #include "scene/scene.h"
 #include "t.h"
@@ -474,23 +475,6 @@ static int cmp_names(const void *a, const void *b)
     return strcmp(*(char *const *)a, *(char *const *)b);
 }
 
-static char *read_all(const char *path, size_t *len)
-{
-    FILE *f = fopen(path, "rb");
-    char *buf;
-    long n;
-    if (!f)
-        return NULL;
-    fseek(f, 0, SEEK_END);
-    n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    buf = malloc((size_t)n + 1);
-    *len = fread(buf, 1, (size_t)n, f);
-    buf[*len] = '\0';
-    fclose(f);
-    return buf;
-}
-
 /* Each tests/parse_errors/NAME.mcrt starts with "# expect: MESSAGE", the exact message of its
  * error (the file name as given, relative to the repository root). I/O failures must have the I/O
  * status, everything else the parse status. */
@@ -521,7 +505,7 @@ static void test_error_files(void)
         mcrt_status st;
         int io;
         snprintf(path, sizeof path, "%s/%s", ERR_DIR, names[i]);
-        text = read_all(path, &len);
+        text = t_read_file(path, &len);
         if (!text || strncmp(text, "# expect: ", 10) != 0 || !(nl = strchr(text, '\n'))) {
             T_CHECK(0, "%s: no '# expect: ' line", path);
             free(text);

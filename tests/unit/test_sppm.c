@@ -32,6 +32,7 @@
 
 #include "core/rng.h"
 #include "integrator/point_grid.h"
+#include "file_util.h"
 #include "mcrt.h"
 #include "render_util.h"
 #include "t.h"
@@ -548,34 +549,9 @@ static void test_wrong_side(void)
 /* Load a scene file with its film replaced by a w × h one (and `extra` appended). */
 static char *scene_at(const char *path, int w, int h, const char *extra)
 {
-    FILE *f = fopen(path, "rb");
-    char *text, *out, *film, *end;
-    long n;
-    if (!f)
-        return NULL;
-    fseek(f, 0, SEEK_END);
-    n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    text = calloc((size_t)n + 1, 1);
-    out = calloc((size_t)n + 256 + strlen(extra), 1);
-    if (!text || !out || fread(text, 1, (size_t)n, f) != (size_t)n) {
-        fclose(f);
-        free(text);
-        free(out);
-        return NULL;
-    }
-    fclose(f);
-    film = strstr(text, "\nfilm {");
-    end = film ? strchr(film, '}') : NULL;
-    if (!end) {
-        free(text);
-        free(out);
-        return NULL;
-    }
-    film[1] = '\0';
-    sprintf(out, "%sfilm { width %d height %d }%s\n%s", text, w, h, end + 1, extra);
-    free(text);
-    return out;
+    char film[64];
+    sprintf(film, "film { width %d height %d }", w, h);
+    return t_scene_with_film(path, film, extra);
 }
 
 static float *render_with(const char *text, const char *integrator, int spp, uint64_t seed,
