@@ -207,3 +207,37 @@ int mc_args_name(const char *name, const char *set, const char *text)
             mc_args_names(set, ", ", " or ", list, sizeof list), text);
     return 0;
 }
+
+#define RENDER_ARG_NAME(id, name, has_value) name,
+static const char *const render_arg_names[RENDER_ARGS_END] = {MC_RENDER_ARGS(RENDER_ARG_NAME)};
+
+int mc_args_render(int opt, const char *v, mcrt_options *o)
+{
+    const char *name = opt >= 0 && opt < RENDER_ARGS_END ? render_arg_names[opt] : NULL;
+    int crop[4];
+    switch (opt) {
+    case RENDER_ARG_SPP: return mc_args_int(name, v, 1, 2147483647, &o->spp);
+    case RENDER_ARG_THREADS: return mc_args_int(name, v, 0, 2147483647, &o->threads);
+    case RENDER_ARG_SEED: return mc_args_u64(name, v, &o->seed);
+    case RENDER_ARG_INTEGRATOR:
+        o->integrator = v;
+        return mc_args_name(name, "integrator", v);
+    case RENDER_ARG_SAMPLER:
+        o->sampler = v;
+        return mc_args_name(name, "sampler", v);
+    case RENDER_ARG_ALL_FEATURES: o->all_features = 1; return 1;
+    case RENDER_ARG_CROP:
+        if (!mc_args_window(name, v, crop))
+            return 0;
+        o->crop_x0 = crop[0];
+        o->crop_y0 = crop[1];
+        o->crop_x1 = crop[2];
+        o->crop_y1 = crop[3];
+        return 1;
+    case RENDER_ARG_PASSES: return mc_args_int(name, v, 1, 2147483647, &o->passes);
+    case RENDER_ARG_TIME: return mc_args_real(name, v, 1, 0, &o->time_budget);
+    case RENDER_ARG_TARGET_ERROR: return mc_args_real(name, v, 1, 0, &o->target_error);
+    case RENDER_ARG_STATE: o->save_state = 1; return 1;
+    }
+    return 0; /* not a render option: a caller's mistake */
+}

@@ -7,6 +7,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "mcrt.h"
+
 /* One option a command accepts. A table of them ends with {NULL, 0, 0}. */
 struct arg_spec {
     const char *name; /* "spp" for --spp, or NULL for a one-letter option only */
@@ -50,5 +52,22 @@ const char *mc_args_names(const char *set, const char *sep, const char *last, ch
 /* Whether text is one of the names of the library's set; if not, says which are, like
  * mc_args_int. */
 int mc_args_name(const char *name, const char *set, const char *text);
+
+/* The options that set a render's mcrt_options the same way in mcrt and mcrt-mpi: one table,
+ * X(ID, NAME, HAS_VALUE), that both commands' option tables begin with (MC_RENDER_ARG_SPEC) and
+ * that mc_args_render reads, so that a value means the same, and is checked the same, in both. */
+#define MC_RENDER_ARGS(X)                                                                          \
+    X(SPP, "spp", 1) X(THREADS, "threads", 1) X(SEED, "seed", 1) X(INTEGRATOR, "integrator", 1)    \
+    X(SAMPLER, "sampler", 1) X(ALL_FEATURES, "all-features", 0) X(CROP, "crop", 1)                 \
+    X(PASSES, "passes", 1) X(TIME, "time", 1) X(TARGET_ERROR, "target-error", 1)                   \
+    X(STATE, "state", 0)
+#define MC_RENDER_ARG_ENUM(id, name, has_value) RENDER_ARG_##id,
+/* The render options' indices; a command's own options are numbered from RENDER_ARGS_END. */
+enum { MC_RENDER_ARGS(MC_RENDER_ARG_ENUM) RENDER_ARGS_END };
+#define MC_RENDER_ARG_SPEC(id, name, has_value) {name, 0, has_value},
+/* Set the render option of index opt (below RENDER_ARGS_END) in *o from its value (NULL for a
+ * flag); 0 when the value is bad, which has then been printed, as by mc_args_int. Strings are
+ * pointed at, not copied (mcrt_render_new copies them). */
+int mc_args_render(int opt, const char *value, mcrt_options *o);
 
 #endif

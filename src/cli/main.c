@@ -262,31 +262,23 @@ static void progress_clear(struct progress *p)
 
 /* ---- the render command ---- */
 
-enum { OPT_OUTPUT, OPT_SPP, OPT_THREADS, OPT_SEED, OPT_INTEGRATOR, OPT_ALL_FEATURES, OPT_STATS,
-       OPT_QUIET, OPT_HELP, OPT_VERSION, OPT_AOV, OPT_CROP, OPT_TIME, OPT_TARGET_ERROR,
-       OPT_ADAPTIVE, OPT_SAMPLER, OPT_LIST, OPT_PASSES, OPT_FIRST_PASS, OPT_STATE, OPT_RESUME,
-       OPT_DENOISE, OPT_END };
+/* The options of mcrt-mpi's too (MC_RENDER_ARGS), then mcrt's own. */
+enum { OPT_OUTPUT = RENDER_ARGS_END, OPT_STATS, OPT_QUIET, OPT_HELP, OPT_VERSION, OPT_AOV,
+       OPT_ADAPTIVE, OPT_LIST, OPT_FIRST_PASS, OPT_RESUME, OPT_DENOISE, OPT_END };
 static const struct arg_spec render_options[OPT_END + 1] = {
-    [OPT_OUTPUT] = {NULL, 'o', 1},        [OPT_SPP] = {"spp", 0, 1},
-    [OPT_THREADS] = {"threads", 0, 1},    [OPT_SEED] = {"seed", 0, 1},
-    [OPT_INTEGRATOR] = {"integrator", 0, 1}, [OPT_ALL_FEATURES] = {"all-features", 0, 0},
-    [OPT_STATS] = {"stats", 0, 1},
+    MC_RENDER_ARGS(MC_RENDER_ARG_SPEC)
+    [OPT_OUTPUT] = {NULL, 'o', 1},        [OPT_STATS] = {"stats", 0, 1},
     [OPT_QUIET] = {"quiet", 0, 0},        [OPT_HELP] = {"help", 0, 0},
     [OPT_VERSION] = {"version", 0, 0},    [OPT_AOV] = {"aov", 0, 1},
-    [OPT_CROP] = {"crop", 0, 1},          [OPT_TIME] = {"time", 0, 1},
-    [OPT_TARGET_ERROR] = {"target-error", 0, 1}, [OPT_ADAPTIVE] = {"adaptive", 0, 0},
-    [OPT_SAMPLER] = {"sampler", 0, 1},    [OPT_LIST] = {"list", 0, 1},
-    [OPT_PASSES] = {"passes", 0, 1},      [OPT_FIRST_PASS] = {"first-pass", 0, 1},
-    [OPT_STATE] = {"state", 0, 0},        [OPT_RESUME] = {"resume", 0, 1},
+    [OPT_ADAPTIVE] = {"adaptive", 0, 0},  [OPT_LIST] = {"list", 0, 1},
+    [OPT_FIRST_PASS] = {"first-pass", 0, 1}, [OPT_RESUME] = {"resume", 0, 1},
     [OPT_DENOISE] = {"denoise", 0, 0},
     [OPT_END] = {NULL, 0, 0}};
 
 struct render_args {
-    const char *scene, *output, *stats, *integrator, *aovs, *sampler, *resume;
-    int spp, threads, quiet, all_features, adaptive, passes, first_pass, state, denoise;
-    int crop[4];                      /* x0, y0, x1, y1; all 0 = none */
-    double time_budget, target_error; /* 0 = none */
-    uint64_t seed;
+    const char *scene, *output, *stats;
+    int quiet;
+    mcrt_options o; /* the render's, but for the progress callback */
 };
 
 /* Parse the command line into a; returns -1 to go on, or the exit status to stop with. */
@@ -296,8 +288,14 @@ static int parse_render_args(int argc, char **argv, struct render_args *a)
     const char *v;
     int opt;
     memset(a, 0, sizeof *a);
+    mcrt_options_init(&a->o);
     mc_args_init(&p, argc, argv);
     while ((opt = mc_args_next(&p, render_options, &v)) != ARG_END) {
+        if (opt >= 0 && opt < RENDER_ARGS_END) {
+            if (!mc_args_render(opt, v, &a->o))
+                return STATUS_USAGE;
+            continue;
+        }
         switch (opt) {
         case ARG_ERROR:
             return STATUS_USAGE;
@@ -311,68 +309,24 @@ static int parse_render_args(int argc, char **argv, struct render_args *a)
         case OPT_OUTPUT:
             a->output = v;
             break;
-        case OPT_SPP:
-            if (!mc_args_int("spp", v, 1, 2147483647, &a->spp))
-                return STATUS_USAGE;
-            break;
-        case OPT_THREADS:
-            if (!mc_args_int("threads", v, 0, 2147483647, &a->threads))
-                return STATUS_USAGE;
-            break;
-        case OPT_SEED:
-            if (!mc_args_u64("seed", v, &a->seed))
-                return STATUS_USAGE;
-            break;
-        case OPT_INTEGRATOR:
-            if (!mc_args_name("integrator", "integrator", v))
-                return STATUS_USAGE;
-            a->integrator = v;
-            break;
-        case OPT_ALL_FEATURES:
-            a->all_features = 1;
-            break;
         case OPT_STATS:
             a->stats = v;
             break;
         case OPT_AOV:
-            a->aovs = v;
-            break;
-        case OPT_CROP:
-            if (!mc_args_window("crop", v, a->crop))
-                return STATUS_USAGE;
-            break;
-        case OPT_TIME:
-            if (!mc_args_real("time", v, 1, 0, &a->time_budget))
-                return STATUS_USAGE;
-            break;
-        case OPT_TARGET_ERROR:
-            if (!mc_args_real("target-error", v, 1, 0, &a->target_error))
-                return STATUS_USAGE;
+            a->o.aovs = v;
             break;
         case OPT_ADAPTIVE:
-            a->adaptive = 1;
+            a->o.adaptive = 1;
             break;
         case OPT_DENOISE:
-            a->denoise = 1;
-            break;
-        case OPT_SAMPLER:
-            if (!mc_args_name("sampler", "sampler", v))
-                return STATUS_USAGE;
-            a->sampler = v;
-            break;
-        case OPT_PASSES:
-            if (!mc_args_int("passes", v, 1, 2147483647, &a->passes))
-                return STATUS_USAGE;
+            a->o.denoise = 1;
             break;
         case OPT_FIRST_PASS:
-            if (!mc_args_int("first-pass", v, 0, 2147483647, &a->first_pass))
+            if (!mc_args_int("first-pass", v, 0, 2147483647, &a->o.first_pass))
                 return STATUS_USAGE;
             break;
-        case OPT_STATE:
-            a->state = 1;
-            break;
         case OPT_RESUME:
-            a->resume = v;
+            a->o.resume = v;
             break;
         case OPT_QUIET:
             a->quiet = 1;
@@ -459,26 +413,7 @@ static int render(const struct render_args *a, const char *output)
         mcrt_scene_free(scene);
         return status == MCRT_ERR_NOMEM ? STATUS_FAIL : STATUS_USAGE;
     }
-    mcrt_options_init(&o);
-    o.spp = a->spp;
-    o.threads = a->threads;
-    o.seed = a->seed;
-    o.integrator = a->integrator;
-    o.all_features = a->all_features;
-    o.aovs = a->aovs;
-    o.crop_x0 = a->crop[0];
-    o.crop_y0 = a->crop[1];
-    o.crop_x1 = a->crop[2];
-    o.crop_y1 = a->crop[3];
-    o.time_budget = a->time_budget;
-    o.target_error = a->target_error;
-    o.adaptive = a->adaptive;
-    o.denoise = a->denoise;
-    o.sampler = a->sampler;
-    o.passes = a->passes;
-    o.first_pass = a->first_pass;
-    o.resume = a->resume;
-    o.save_state = a->state;
+    o = a->o;
     if (!a->quiet && isatty(STDERR_FILENO)) {
         prog.start = now();
         prog.last_draw = 0.0;
@@ -518,7 +453,7 @@ static int render(const struct render_args *a, const char *output)
     }
     /* Progressive renders say how many passes ran; adaptive ones how far the pixels' samples
      * spread (spp is then their mean). */
-    if (a->time_budget > 0.0 || a->target_error > 0.0 || a->passes || a->resume || st.adaptive)
+    if (o.time_budget > 0.0 || o.target_error > 0.0 || o.passes || o.resume || st.adaptive)
         snprintf(passes, sizeof passes, ", %d pass%s%s", st.passes, st.passes == 1 ? "" : "es",
                  st.adaptive ? ", adaptive" : "");
     if (st.adaptive)
@@ -526,7 +461,7 @@ static int render(const struct render_args *a, const char *output)
                  st.spp_min, st.spp_max);
     /* A denoised image's estimated error beside the raw one's; the time to a lower error is
      * predicted for raw renders only (the denoiser's error falls at its own rate). */
-    if (a->denoise)
+    if (o.denoise)
         snprintf(to_goal, sizeof to_goal, " (raw %.3g, denoised in %.2f s)", st.est_relmse_raw,
                  st.denoise_seconds);
     else if (st.est_relmse > 0.0) { /* the time to the next power of ten below the error */
@@ -571,8 +506,8 @@ static int cmd_render(int argc, char **argv)
     /* Everything that can be known to fail is checked before the render, not after it. */
     if (!check_output(output) || !check_folder(output) || (a.stats && !check_folder(a.stats)))
         code = STATUS_USAGE;
-    else if ((a.aovs || a.state) && strcasecmp(suffix_of(output), "exr") != 0) {
-        fprintf(stderr, "mcrt: --%s needs an EXR image, not '%s'\n", a.aovs ? "aov" : "state",
+    else if ((a.o.aovs || a.o.save_state) && strcasecmp(suffix_of(output), "exr") != 0) {
+        fprintf(stderr, "mcrt: --%s needs an EXR image, not '%s'\n", a.o.aovs ? "aov" : "state",
                 output);
         code = STATUS_USAGE;
     }

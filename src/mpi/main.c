@@ -41,22 +41,17 @@ static const char usage[] =
     "\n"
     "exit status: 0 success; 1 a rank failed or the image could not be written; 2 bad input\n";
 
-enum { OPT_OUTPUT, OPT_SPP, OPT_THREADS, OPT_SEED, OPT_INTEGRATOR, OPT_SAMPLER, OPT_ALL_FEATURES,
-       OPT_CROP, OPT_PASSES, OPT_TIME, OPT_TARGET_ERROR, OPT_STATE, OPT_QUIET, OPT_HELP, OPT_END };
+/* mcrt's render options (MC_RENDER_ARGS), then mcrt-mpi's own. */
+enum { OPT_OUTPUT = RENDER_ARGS_END, OPT_QUIET, OPT_HELP, OPT_END };
 static const struct arg_spec options[OPT_END + 1] = {
-    [OPT_OUTPUT] = {NULL, 'o', 1},         [OPT_SPP] = {"spp", 0, 1},
-    [OPT_THREADS] = {"threads", 0, 1},     [OPT_SEED] = {"seed", 0, 1},
-    [OPT_INTEGRATOR] = {"integrator", 0, 1}, [OPT_SAMPLER] = {"sampler", 0, 1},
-    [OPT_ALL_FEATURES] = {"all-features", 0, 0}, [OPT_CROP] = {"crop", 0, 1},
-    [OPT_PASSES] = {"passes", 0, 1},       [OPT_TIME] = {"time", 0, 1},
-    [OPT_TARGET_ERROR] = {"target-error", 0, 1}, [OPT_STATE] = {"state", 0, 0},
-    [OPT_QUIET] = {"quiet", 0, 0},         [OPT_HELP] = {"help", 0, 0},
+    MC_RENDER_ARGS(MC_RENDER_ARG_SPEC)
+    [OPT_OUTPUT] = {NULL, 'o', 1}, [OPT_QUIET] = {"quiet", 0, 0}, [OPT_HELP] = {"help", 0, 0},
     [OPT_END] = {NULL, 0, 0}};
 
 struct job {
     const char *scene, *output;
-    mcrt_options o; /* the options of every pass */
-    int passes, quiet, state;
+    mcrt_options o; /* the options of the whole render; each pass's are made from them */
+    int quiet;
     int rank, size;
 };
 
@@ -66,13 +61,18 @@ static int parse(int argc, char **argv, struct job *j)
 {
     struct arg_parser p;
     const char *v;
-    int opt, crop[4], ok = 1;
+    int opt, ok = 1;
     if (j->rank != 0) /* the same arguments fail on every rank: rank 0 says why */
         ok = freopen("/dev/null", "w", stderr) != NULL;
     (void)ok;
     mcrt_options_init(&j->o);
     mc_args_init(&p, argc, argv);
     while ((opt = mc_args_next(&p, options, &v)) != ARG_END) {
+        if (opt >= 0 && opt < RENDER_ARGS_END) {
+            if (!mc_args_render(opt, v, &j->o))
+                return STATUS_USAGE;
+            continue;
+        }
         switch (opt) {
         case ARG_ERROR: return STATUS_USAGE;
         case ARG_OPERAND:
@@ -84,50 +84,6 @@ static int parse(int argc, char **argv, struct job *j)
             j->scene = v;
             break;
         case OPT_OUTPUT: j->output = v; break;
-        case OPT_SPP:
-            if (!mc_args_int("spp", v, 1, 2147483647, &j->o.spp))
-                return STATUS_USAGE;
-            break;
-        case OPT_THREADS:
-            if (!mc_args_int("threads", v, 0, 2147483647, &j->o.threads))
-                return STATUS_USAGE;
-            break;
-        case OPT_SEED:
-            if (!mc_args_u64("seed", v, &j->o.seed))
-                return STATUS_USAGE;
-            break;
-        case OPT_INTEGRATOR:
-            if (!mc_args_name("integrator", "integrator", v))
-                return STATUS_USAGE;
-            j->o.integrator = v;
-            break;
-        case OPT_SAMPLER:
-            if (!mc_args_name("sampler", "sampler", v))
-                return STATUS_USAGE;
-            j->o.sampler = v;
-            break;
-        case OPT_ALL_FEATURES: j->o.all_features = 1; break;
-        case OPT_CROP:
-            if (!mc_args_window("crop", v, crop))
-                return STATUS_USAGE;
-            j->o.crop_x0 = crop[0];
-            j->o.crop_y0 = crop[1];
-            j->o.crop_x1 = crop[2];
-            j->o.crop_y1 = crop[3];
-            break;
-        case OPT_PASSES:
-            if (!mc_args_int("passes", v, 1, 2147483647, &j->passes))
-                return STATUS_USAGE;
-            break;
-        case OPT_TIME:
-            if (!mc_args_real("time", v, 1, 0, &j->o.time_budget))
-                return STATUS_USAGE;
-            break;
-        case OPT_TARGET_ERROR:
-            if (!mc_args_real("target-error", v, 1, 0, &j->o.target_error))
-                return STATUS_USAGE;
-            break;
-        case OPT_STATE: j->state = 1; break;
         case OPT_QUIET: j->quiet = 1; break;
         case OPT_HELP:
             if (j->rank == 0)
@@ -140,8 +96,8 @@ static int parse(int argc, char **argv, struct job *j)
                 j->scene ? "output (-o FILE)" : "scene file");
         return STATUS_USAGE;
     }
-    if (!j->passes && !(j->o.time_budget > 0.0) && !(j->o.target_error > 0.0))
-        j->passes = j->size;
+    if (!j->o.passes && !(j->o.time_budget > 0.0) && !(j->o.target_error > 0.0))
+        j->o.passes = j->size;
     return -1;
 }
 
@@ -213,7 +169,7 @@ static int render_pass(const struct job *j, const mcrt_scene *scene, int k, mcrt
     o.passes = 1;
     o.time_budget = o.target_error = 0.0;
     /* The accumulating render of rank 0 writes the state as mcrt would. */
-    o.save_state = j->state || j->o.time_budget > 0.0 || j->o.target_error > 0.0;
+    o.save_state = j->o.save_state || j->o.time_budget > 0.0 || j->o.target_error > 0.0;
     *out = mcrt_render_new(scene, &o);
     if (!*out) {
         snprintf(msg, MSG_LEN, "out of memory");
@@ -248,7 +204,7 @@ static int run(const struct job *j, const mcrt_scene *scene, mcrt_render **acc, 
     double t0 = now(), last_round = 0.0;
     char msg[MSG_LEN];
     mcrt_scene_film(scene, NULL, NULL, &spp);
-    limit = j->passes ? j->passes : (1 << 24) / (j->o.spp ? j->o.spp : spp);
+    limit = j->o.passes ? j->o.passes : (1 << 24) / (j->o.spp ? j->o.spp : spp);
     *done = 0;
     *reduce_seconds = 0.0;
     for (round = 0; !stop; round++) {
