@@ -17,7 +17,8 @@ enum { MAX_RUNGS = 32, MAX_VARIANTS = 8 };
 static const char usage[] =
     "usage: mcrt converge [options] SCENE\n"
     "Render SCENE at a ladder of budgets, each with a fresh seed, and write DIR/NAME-converge.csv\n"
-    "(estimator, sampler, spp, seconds, MSE, relMSE, estimated relMSE) and a log-log plot of\n"
+    "(estimator, sampler, denoise, spp, seconds, MSE, relMSE, estimated relMSE) and a log-log\n"
+    "plot of\n"
     "relMSE against seconds, the true one beside the renders' own estimate (dashed),\n"
     "DIR/NAME-converge.png (with gnuplot, if installed).\n"
     "\n"
@@ -29,7 +30,8 @@ static const char usage[] =
     "  --compare KEY=LIST  one curve per value: integrator=path,direct, the unbiased and the\n"
     "                      consistent estimator integrator=path,sppm (a ladder of passes for\n"
     "                      sppm), the path tracer's strategies integrator=mis,bsdf,light,\n"
-    "                      or sampler=";
+    "                      the raw image against the denoised one denoise=off,on (mcrt(1),\n"
+    "                      --denoise; its seconds include the denoiser's), or sampler=";
 /* The help after the sampler names. */
 static const char usage_tail[] =
     "\n"
@@ -47,8 +49,30 @@ static const struct arg_spec options[OPT_END + 1] = {
     [OPT_SEED] = {"seed", 0, 1},       [OPT_QUIET] = {"quiet", 0, 0},
     [OPT_HELP] = {"help", 'h', 0},     [OPT_END] = {NULL, 0, 0}};
 
+/* The options --compare varies, one curve per value. Each is a column of the CSV, where a render
+ * that does not vary it has the value unset (the scene's choice, or the option's default). */
+struct compare_key {
+    const char *name, *column, *unset;
+    const char *reference;        /* its value in the default reference; NULL: as unset */
+    const char *const *values;    /* the values it takes; NULL: the library checks them */
+    void (*set)(mcrt_options *o, const char *value);
+};
+static void set_integrator(mcrt_options *o, const char *v) { o->integrator = v; }
+static void set_sampler(mcrt_options *o, const char *v) { o->sampler = v; }
+static void set_denoise(mcrt_options *o, const char *v) { o->denoise = strcmp(v, "on") == 0; }
+static const char *const off_on[] = {"off", "on", NULL};
+/* The reference of an integrator comparison is the unbiased path tracer's, whatever the scene's
+ * integrator; a denoised reference would carry the denoiser's bias into every curve. */
+static const struct compare_key compare_keys[] = {
+    {"integrator", "estimator", "scene", "path", NULL, set_integrator},
+    {"sampler", "sampler", "scene", NULL, NULL, set_sampler},
+    {"denoise", "denoise", "off", NULL, off_on, set_denoise},
+};
+enum { COMPARE_KEYS = sizeof compare_keys / sizeof compare_keys[0] };
+
 struct converge {
-    const char *scene, *ref, *dir, *key; /* key: "integrator", "sampler" or NULL */
+    const char *scene, *ref, *dir;
+    const struct compare_key *key;       /* the compared option; NULL: one curve */
     char *values[MAX_VARIANTS];          /* the compared values (strdup'ed) */
     int nvalues, nrungs, threads, quiet, by_time;
     double rungs[MAX_RUNGS];
@@ -82,26 +106,60 @@ static int parse_ladder(const char *name, const char *text, struct converge *c)
     return c->nrungs > 0;
 }
 
-/* "integrator=path,direct" or "sampler=random,stratified,sobol". */
+/* Whether value is one of key's values; if not, says which they are. */
+static int check_value(const struct compare_key *key, const char *value)
+{
+    const char *const *p;
+    if (!key->values)
+        return 1;
+    for (p = key->values; *p; p++)
+        if (strcmp(value, *p) == 0)
+            return 1;
+    fprintf(stderr, "mcrt: --compare: %s takes", key->name);
+    for (p = key->values; *p; p++)
+        fprintf(stderr, "%s %s", p == key->values ? "" : p[1] ? "," : " or", *p);
+    fprintf(stderr, ", not '%s'\n", value);
+    return 0;
+}
+
+/* KEY=LIST, KEY one of compare_keys: "integrator=path,direct", "denoise=off,on". */
 static int parse_compare(const char *text, struct converge *c)
 {
     const char *eq = strchr(text, '='), *p;
-    if (!eq || (strncmp(text, "integrator=", 11) != 0 && strncmp(text, "sampler=", 8) != 0) ||
-        !eq[1]) {
-        fprintf(stderr, "mcrt: --compare: expected integrator=LIST or sampler=LIST, got '%s'\n",
-                text);
+    size_t k;
+    for (k = 0; eq && k < COMPARE_KEYS; k++)
+        if (strlen(compare_keys[k].name) == (size_t)(eq - text) &&
+            strncmp(text, compare_keys[k].name, (size_t)(eq - text)) == 0)
+            break;
+    if (!eq || k == COMPARE_KEYS || !eq[1]) {
+        fprintf(stderr, "mcrt: --compare: expected");
+        for (k = 0; k < COMPARE_KEYS; k++)
+            fprintf(stderr, "%s %s=LIST", k == 0 ? "" : k + 1 < COMPARE_KEYS ? "," : " or",
+                    compare_keys[k].name);
+        fprintf(stderr, ", got '%s'\n", text);
         return 0;
     }
-    c->key = text[0] == 'i' ? "integrator" : "sampler";
+    c->key = &compare_keys[k];
+    while (c->nvalues > 0)
+        free(c->values[--c->nvalues]);
     p = eq + 1;
-    while (*p && c->nvalues < MAX_VARIANTS) {
+    while (*p) {
         size_t len = strcspn(p, ",");
-        char *v = malloc(len + 1);
-        if (!v)
+        char *v;
+        if (len == 0 || c->nvalues == MAX_VARIANTS) {
+            fprintf(stderr, "mcrt: --compare: expected up to %d comma-separated values, got "
+                            "'%s'\n", MAX_VARIANTS, text);
             return 0;
+        }
+        if (!(v = malloc(len + 1))) {
+            fprintf(stderr, "mcrt: out of memory\n");
+            return 0;
+        }
         memcpy(v, p, len);
         v[len] = '\0';
         c->values[c->nvalues++] = v;
+        if (!check_value(c->key, v))
+            return 0;
         p += len + (p[len] == ',');
     }
     return 1;
@@ -147,10 +205,14 @@ static void rung_options(const struct converge *c, int v, int i, mcrt_options *o
         o->time_budget = c->rungs[i];
     } else
         o->spp = (int)c->rungs[i];
-    if (c->key && c->key[0] == 'i')
-        o->integrator = c->values[v];
-    else if (c->key)
-        o->sampler = c->values[v];
+    if (c->key)
+        c->key->set(o, c->values[v]);
+}
+
+/* The value of compare_keys[k] in the renders of variant v. */
+static const char *variant_value(const struct converge *c, size_t k, int v)
+{
+    return c->key == &compare_keys[k] ? c->values[v] : compare_keys[k].unset;
 }
 
 /* A gnuplot script drawing two curves per variant from the CSV, in one colour: the true relMSE
@@ -167,15 +229,22 @@ static int write_plot(const struct converge *c, const char *csv, const char *gp,
                "set xlabel 'seconds'\nset ylabel 'relative MSE'\nset key top right\n"
                "plot ", png);
     for (v = 0; v < n; v++) {
-        /* The rows of variant v: the estimator is the first column, the sampler the second. */
-        char pat[80] = ",";
-        if (c->key)
-            snprintf(pat, sizeof pat, "%s%s,", c->key[0] == 'i' ? "^" : ",", c->values[v]);
-        const char *name = c->key ? c->values[v] : "render";
-        fprintf(f, "%s'< grep -v -e ^# -e ^estimator %s | grep %s' using 4:6 with linespoints "
-                   "lc %d dt 1 title '%s', \\\n     '' using 4:7 with lines lc %d dt 2 "
-                   "title '%s, estimated'",
-                v ? ", \\\n     " : "", csv, pat, v + 1, name, v + 1, name);
+        /* The rows of variant v: its value in the compared key's column. */
+        char pat[80] = ",", name[80] = "render";
+        int col = c->key ? (int)(c->key - compare_keys) : 0;
+        if (c->key) {
+            snprintf(pat, sizeof pat, "\"^([^,]*,){%d}%s,\"", col, c->values[v]);
+            /* A value of the key's own ("on") is named with the key; a library name as it is. */
+            if (c->key->values)
+                snprintf(name, sizeof name, "%s %s", c->key->name, c->values[v]);
+            else
+                snprintf(name, sizeof name, "%s", c->values[v]);
+        }
+        fprintf(f, "%s'< grep -v -e ^# -e ^estimator %s | grep -E %s' using %d:%d with "
+                   "linespoints lc %d dt 1 title '%s', \\\n     '' using %d:%d with lines "
+                   "lc %d dt 2 title '%s, estimated'",
+                v ? ", \\\n     " : "", csv, pat, COMPARE_KEYS + 2, COMPARE_KEYS + 4, v + 1,
+                name, COMPARE_KEYS + 2, COMPARE_KEYS + 5, v + 1, name);
     }
     fprintf(f, "\n");
     return fclose(f) == 0;
@@ -193,6 +262,7 @@ static int run(struct converge *c)
     char err[512];
     FILE *f = NULL;
     int v, i, code = STATUS_FAIL, n = c->key ? c->nvalues : 1;
+    size_t k;
     double top = 0.0;
 
     if (!s || !csv || !tmp || !gp || !png) {
@@ -219,8 +289,11 @@ static int run(struct converge *c)
             goto done;
         rung_options(c, 0, 0, &o);
         o.seed = c->seed + 1000003;
-        o.integrator = c->key && c->key[0] == 'i' ? "path" : NULL;
+        o.integrator = NULL;
         o.sampler = NULL;
+        o.denoise = 0;
+        if (c->key && c->key->reference)
+            c->key->set(&o, c->key->reference);
         if (c->by_time)
             o.time_budget = 16.0 * top;
         else
@@ -232,7 +305,9 @@ static int run(struct converge *c)
         fprintf(f, "# reference: a render of %d spp, seed %llu, %.3f s (no --ref given): %s\n",
                 st.spp, (unsigned long long)o.seed, st.seconds, ref);
     }
-    fprintf(f, "estimator,sampler,spp,seconds,mse,relmse,est_relmse\n");
+    for (k = 0; k < COMPARE_KEYS; k++)
+        fprintf(f, "%s,", compare_keys[k].column);
+    fprintf(f, "spp,seconds,mse,relmse,est_relmse\n");
     mcrt_diff_options_init(&dopt);
     for (v = 0; v < n; v++)
         for (i = 0; i < c->nrungs; i++) {
@@ -244,13 +319,15 @@ static int run(struct converge *c)
                 code = STATUS_USAGE;
                 goto done;
             }
-            fprintf(f, "%s,%s,%d,%.6g,%.6g,%.6g,%.6g\n",
-                    o.integrator ? o.integrator : "scene", o.sampler ? o.sampler : "scene",
-                    st.spp, st.seconds, dr.whole.mse, dr.whole.relmse, st.est_relmse);
+            for (k = 0; k < COMPARE_KEYS; k++)
+                fprintf(f, "%s,", variant_value(c, k, v));
+            fprintf(f, "%d,%.6g,%.6g,%.6g,%.6g\n", st.spp, st.seconds, dr.whole.mse,
+                    dr.whole.relmse, st.est_relmse);
             if (!c->quiet)
-                fprintf(stderr, "%s %s: %d spp, %.3f s, relMSE %.4g (estimated %.4g)\n",
-                        o.integrator ? o.integrator : "", o.sampler ? o.sampler : "", st.spp,
-                        st.seconds, dr.whole.relmse, st.est_relmse);
+                fprintf(stderr, "%s%s%s: %d spp, %.3f s, relMSE %.4g (estimated %.4g)\n",
+                        c->key ? c->key->name : "", c->key ? "=" : "",
+                        c->key ? c->values[v] : "", st.spp, st.seconds, dr.whole.relmse,
+                        st.est_relmse);
         }
     if (fclose(f) != 0) {
         f = NULL;
