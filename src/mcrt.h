@@ -59,7 +59,8 @@ const char *mcrt_status_string(mcrt_status status);
  * mcrt_options.integrator and of a scene's integrator method), "sampler" (the values of
  * mcrt_options.sampler), "aov" (the layers of mcrt_options.aovs), "filter" and "shape" (the
  * scene language's film filters and shape blocks), "light" (the kinds of light: point, area,
- * environment), "material" (the kinds of material). NULL for any other set. */
+ * environment), "material" (the kinds of material), "texture" (the kinds of texture: image,
+ * checker). NULL for any other set. */
 const char *const *mcrt_names(const char *set);
 /* A one-line description of the member name of set, for listing it (mcrt --help); NULL when
  * the set has none (only "integrator" has them) or name is not in it. Static string. */

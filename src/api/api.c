@@ -35,7 +35,7 @@ struct mcrt_scene {
     mc_diag err;
     int loaded;
     uint64_t hash;          /* of the scene's text, for render states (render/state.h) */
-    char info[1024];
+    char info[4096];
 };
 
 struct mcrt_render {
@@ -102,8 +102,11 @@ static mcrt_status read_images(struct scene *sc, mc_diag *d)
     for (i = 0; i < sc->image_count; i++) {
         struct image im;
         mcrt_status st = mc_image_read(sc->images[i].path, &im, d);
-        if (st != MCRT_OK)
-            return st;
+        if (st != MCRT_OK) {
+            /* Said where the scene names the file: "FILE:LINE:COL: cannot read ..." */
+            mc_diag why = *d;
+            return mc_fail(d, st, "%s: %s", sc->images[i].origin, why.msg);
+        }
         mc_scene_set_image(sc, i, im.rgb, im.width, im.height);
     }
     return MCRT_OK;
@@ -262,7 +265,7 @@ const char *mcrt_scene_info(mcrt_scene *s)
     const struct scene *sc;
     unsigned f, bit;
     struct sample_dims dims;
-    size_t n = 0, bvh_bytes;
+    size_t n = 0, bvh_bytes, i;
     int w;
     if (!s)
         return "";
@@ -298,6 +301,19 @@ const char *mcrt_scene_info(mcrt_scene *s)
         snprintf(s->info + n, sizeof s->info - n, "environment map: %s, %d x %d, %zu bytes\n",
                  sc->images[sc->lights[sc->env_light].image - 1].path, sc->envmap->w,
                  sc->envmap->h, mc_envmap_bytes(sc->envmap));
+    for (i = 0; i < sc->texture_count; i++) {
+        const struct texture *t = &sc->textures[i];
+        n = strlen(s->info);
+        if (n >= sizeof s->info)
+            break;
+        if (t->kind == TEXTURE_IMAGE)
+            snprintf(s->info + n, sizeof s->info - n, "texture %s: image %s, %d x %d, %zu bytes\n",
+                     t->name, sc->images[t->image - 1].path, t->w, t->h,
+                     (size_t)t->w * (size_t)t->h * 3 * sizeof *t->rgb);
+        else
+            snprintf(s->info + n, sizeof s->info - n, "texture %s: %s, %zu bytes\n", t->name,
+                     mc_texture_names[t->kind], sizeof *t);
+    }
     return s->info;
 }
 
@@ -828,7 +844,7 @@ const char *const *mcrt_names(const char *set)
     } sets[] = {{"integrator", mc_integrator_names}, {"sampler", mc_sampler_names},
                 {"aov", mc_aov_names},               {"filter", mc_filter_names},
                 {"shape", shape_blocks},             {"light", mc_light_names},
-                {"material", mc_material_names}};
+                {"material", mc_material_names},     {"texture", mc_texture_names}};
     size_t i;
     for (i = 0; set && i < sizeof sets / sizeof sets[0]; i++)
         if (strcmp(set, sets[i].set) == 0)

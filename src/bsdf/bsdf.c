@@ -18,6 +18,8 @@ unsigned mc_material_lobes(const struct material *m)
 {
     /* A kind with a roughness is smooth (delta lobes) below MC_BSDF_SMOOTH_ALPHA, glossy above;
      * one without has fixed lobes. */
+    if (m->roughness_texture) /* α varies over the surface, down to the smooth limit */
+        return MC_LOBE_SPECULAR | MC_LOBE_GLOSSY;
     if (m->kind->keys & MC_KEYS_ROUGHNESS)
         return m->alpha < MC_BSDF_SMOOTH_ALPHA ? MC_LOBE_SPECULAR : MC_LOBE_GLOSSY;
     return m->kind->ops->delta == MC_DELTA_ALWAYS ? MC_LOBE_SPECULAR : 0;
@@ -30,14 +32,16 @@ void mc_bsdf_prepare(struct material *m)
         m->kind->ops->prepare(m);
 }
 
-void mc_bsdf_init(struct bsdf *b, const struct material *m)
+void mc_bsdf_init(struct bsdf *b, const struct material *m) { mc_bsdf_init_at(b, m, m->color, m->alpha); }
+
+void mc_bsdf_init_at(struct bsdf *b, const struct material *m, vec3 color, float alpha)
 {
     const struct mc_material_ops *ops = m->kind->ops;
     b->ops = ops;
-    b->color = m->color;
+    b->color = color;
     b->ior = m->ior;
     /* !(α >= …) also sends a NaN α to the smooth case. */
-    b->alpha = !(m->alpha >= MC_BSDF_SMOOTH_ALPHA) ? 0.0f : m->alpha;
+    b->alpha = !(alpha >= MC_BSDF_SMOOTH_ALPHA) ? 0.0f : alpha;
     b->ms = NULL;
     b->eta = m->eta;
     b->k = m->k;

@@ -90,6 +90,8 @@ struct bsdf_sample {
 void mc_bsdf_prepare(struct material *m);
 /* b refers to m (rough glass's compensation table), which must outlive it. */
 void mc_bsdf_init(struct bsdf *b, const struct material *m);
+/* The same with the colour and α given (a textured material's at a hit: mc_scene_bsdf). */
+void mc_bsdf_init_at(struct bsdf *b, const struct material *m, vec3 color, float alpha);
 /* Whether every lobe is a delta lobe (no light sampling is useful then): mirror, smooth glass
  * (or glass of ior 1, which is no interface at all), smooth metal. */
 static inline int mc_bsdf_is_delta(const struct bsdf *b) { return b->delta; }

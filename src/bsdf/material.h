@@ -18,8 +18,10 @@ enum mc_material_value {
 };
 
 /* The keys a kind may take besides its keyword; each sets the struct material field of its name
- * (tint: color; roughness r: alpha = r²). */
-enum mc_material_key { MC_KEY_IOR, MC_KEY_TINT, MC_KEY_ROUGHNESS, MC_KEY_ALPHA, MC_KEY_ETA, MC_KEY_K, MC_KEY_COUNT };
+ * (tint: color; roughness r: alpha = r²; texture and roughness_texture: the fields of those
+ * names, a texture's index + 1). */
+enum mc_material_key { MC_KEY_IOR, MC_KEY_TINT, MC_KEY_ROUGHNESS, MC_KEY_ALPHA, MC_KEY_ETA, MC_KEY_K,
+                       MC_KEY_TEXTURE, MC_KEY_ROUGHNESS_TEXTURE, MC_KEY_COUNT };
 #define MC_KEY_BIT(key) (1u << (key))
 #define MC_KEYS_ROUGHNESS (MC_KEY_BIT(MC_KEY_ROUGHNESS) | MC_KEY_BIT(MC_KEY_ALPHA))
 /* In the `given` set of mc_material_ops.complete: the keyword was followed by numbers. */
@@ -41,6 +43,11 @@ struct material {
     float ior;                       /* glass, plastic: index of refraction inside / outside (1.5) */
     float alpha;                     /* GGX α = roughness² (metal, glass, plastic); 0 = smooth */
     vec3 eta, k;                     /* metal: complex index of refraction per channel */
+    /* Textures (scene/texture.h), as 1 + the scene's texture index, 0 for none. At a hit the
+     * BSDF's colour is color × texture(uv), and its α is alpha × r² for the roughness texture's
+     * value r (the mean of its channels): the texture gives the roughness, scaled by the
+     * material's (mc_scene_bsdf). */
+    int texture, roughness_texture;
     struct mc_dielectric_ms ms;      /* rough glass: filled by mc_bsdf_prepare */
 };
 

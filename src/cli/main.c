@@ -68,7 +68,7 @@ static const char usage_after_aov[] =
 static const char usage_after_sampler[] =
     "  --list SET          print the names of a set, one a line (with a tab and a description\n"
     "                      where the set has them): integrator, sampler, aov, filter, shape,\n"
-    "                      light, material\n"
+    "                      light, material, texture\n"
     "  --quiet             print nothing but errors\n"
     "  --help              print this help and exit\n"
     "  --version           print the version and the built-in image formats, and exit\n"

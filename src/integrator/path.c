@@ -76,7 +76,7 @@ static inline vec3 radiance(const struct scene *s, const struct integrator_desc 
         if (depth == cfg->max_depth)
             break;
 
-        mc_bsdf_init(&b, &s->materials[pr->material]);
+        bsdf_at(s, &r, &h, &b, F);
         fr = frame_from_normal(sf.ns);
         wo = frame_to_local(&fr, v3_neg(r.d));
         if (!mc_bsdf_is_delta(&b) && cfg->strategy != STRATEGY_BSDF)
@@ -125,23 +125,33 @@ static inline vec3 radiance(const struct scene *s, const struct integrator_desc 
     {                                                                                          \
         return radiance(s, cfg, r, smp, rays, F);                                              \
     }
-KERNEL(path_delta, 0u)
-KERNEL(path_mis, FEATURE_AREA_LIGHTS)
-KERNEL(path_mis_n, FEATURE_AREA_LIGHTS | FEATURE_LIGHT_SAMPLES)
-KERNEL(path_delta_n, FEATURE_LIGHT_SAMPLES)
-KERNEL(path_motion_delta, FEATURE_MOTION)
-KERNEL(path_motion_mis, FEATURE_MOTION | FEATURE_AREA_LIGHTS)
-KERNEL(path_motion_delta_n, FEATURE_MOTION | FEATURE_LIGHT_SAMPLES)
+#define KERNELS(suffix, T)                                                                     \
+    KERNEL(path_delta##suffix, T)                                                              \
+    KERNEL(path_mis##suffix, T | FEATURE_AREA_LIGHTS)                                          \
+    KERNEL(path_mis_n##suffix, T | FEATURE_AREA_LIGHTS | FEATURE_LIGHT_SAMPLES)                \
+    KERNEL(path_delta_n##suffix, T | FEATURE_LIGHT_SAMPLES)                                    \
+    KERNEL(path_motion_delta##suffix, T | FEATURE_MOTION)                                      \
+    KERNEL(path_motion_mis##suffix, T | FEATURE_MOTION | FEATURE_AREA_LIGHTS)                  \
+    KERNEL(path_motion_delta_n##suffix, T | FEATURE_MOTION | FEATURE_LIGHT_SAMPLES)
+KERNELS(, 0u)
+KERNELS(_textured, FEATURE_TEXTURES)
 KERNEL(path_general, FEATURE_ALL)
+#undef KERNELS
 
 static mc_radiance_fn path_kernel(unsigned features)
 {
-    unsigned key = (features & FEATURE_MOTION ? 4u : 0u) | (mc_features_need_mis(features) ? 2u : 0u)
+    unsigned key = (features & FEATURE_TEXTURES ? 8u : 0u) | (features & FEATURE_MOTION ? 4u : 0u)
+                   | (mc_features_need_mis(features) ? 2u : 0u)
                    | (features & FEATURE_LIGHT_SAMPLES ? 1u : 0u);
-    static const mc_radiance_fn table[8] = {path_delta,        path_delta_n,
-                                            path_mis,          path_mis_n,
-                                            path_motion_delta, path_motion_delta_n,
-                                            path_motion_mis,   path_general};
+    static const mc_radiance_fn table[16] = {
+        path_delta,                 path_delta_n,
+        path_mis,                   path_mis_n,
+        path_motion_delta,          path_motion_delta_n,
+        path_motion_mis,            path_general,
+        path_delta_textured,        path_delta_n_textured,
+        path_mis_textured,          path_mis_n_textured,
+        path_motion_delta_textured, path_motion_delta_n_textured,
+        path_motion_mis_textured,   path_general};
     return table[key];
 }
 

@@ -40,6 +40,16 @@ static inline void surface(const struct scene *s, const struct ray *r, const str
         mc_prim_surface(&s->prims[h->prim], s->normals, r, h, sf);
 }
 
+/* The BSDF at a hit: with its textures only when the scene has some (F: FEATURE_TEXTURES). */
+static inline void bsdf_at(const struct scene *s, const struct ray *r, const struct hit *h,
+                           struct bsdf *b, unsigned F)
+{
+    if (F & FEATURE_TEXTURES)
+        mc_scene_bsdf(s, r, h, b);
+    else
+        mc_bsdf_init(b, &s->materials[s->prims[h->prim].material]);
+}
+
 /* Whether wo and wi (world directions) lie on the two geometric sides of a surface that only
  * reflects. The BSDF sees them in the shading frame, where both can be above the horizon when
  * the shading normal leans away from the geometric one: light would then pass through an

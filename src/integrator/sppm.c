@@ -267,7 +267,7 @@ static void camera_pixel(const struct pass_ctx *c, struct tile_worker *w, int x,
         }
         if (depth == cfg->max_depth)
             break;
-        mc_bsdf_init(&b, &s->materials[pr->material]);
+        bsdf_at(s, &r, &h, &b, FEATURE_TEXTURES);
         fr = frame_from_normal(sf.ns);
         wo = frame_to_local(&fr, v3_neg(r.d));
         uc = mc_sampler_1d(&smp);
@@ -430,7 +430,7 @@ static void trace_photon(const struct pass_ctx *c, struct chunk *ch, uint64_t in
         if (!trace(s, &r, &h, c->motion))
             break;
         surface(s, &r, &h, &sf, c->motion);
-        mc_bsdf_init(&b, &s->materials[s->prims[h.prim].material]);
+        bsdf_at(s, &r, &h, &b, FEATURE_TEXTURES);
         /* The first surface a photon reaches is direct light, which the camera pass takes. */
         if (hits >= 2 && !mc_bsdf_is_delta(&b))
             deposit(c, ch, sf.p, wi, hits, beta);

@@ -67,7 +67,7 @@ void mc_aov_record(struct aov_pixel *p, int half, const struct scene *s, const s
         length += h.t;
         if (pr->light >= 0)
             E = v3_add(E, v3_mul(beta, mc_light_emitted(pr, &sf)));
-        mc_bsdf_init(&b, &s->materials[pr->material]);
+        mc_scene_bsdf(s, &ray, &h, &b);
         if (!mc_bsdf_is_delta(&b) || bounce == MAX_DELTA_BOUNCES) {
             add3(a->albedo, v3_mul(beta, b.color));
             add3(a->normal, v3_dot(sf.ns, ray.d) > 0.0f ? v3_neg(sf.ns) : sf.ns);

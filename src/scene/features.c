@@ -5,7 +5,8 @@
 static unsigned material_features(const struct material *m)
 {
     unsigned lobes = mc_material_lobes(m);
-    return (lobes & MC_LOBE_SPECULAR ? FEATURE_SPECULAR : 0) | (lobes & MC_LOBE_GLOSSY ? FEATURE_GLOSSY : 0);
+    return (lobes & MC_LOBE_SPECULAR ? FEATURE_SPECULAR : 0) | (lobes & MC_LOBE_GLOSSY ? FEATURE_GLOSSY : 0)
+           | (m->texture || m->roughness_texture ? FEATURE_TEXTURES : 0);
 }
 
 unsigned mc_scene_features(const struct scene *s)
@@ -42,6 +43,7 @@ const char *mc_feature_name(unsigned bit)
     case FEATURE_SPECULAR: return "specular";
     case FEATURE_MESHES: return "meshes";
     case FEATURE_LIGHT_SAMPLES: return "light_samples";
+    case FEATURE_TEXTURES: return "textures";
     default: return "?";
     }
 }

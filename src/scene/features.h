@@ -18,7 +18,8 @@ enum feature {
     FEATURE_SPECULAR = 1 << 6,      /* delta lobes (mirror, smooth glass/metal/coat): specular chains */
     FEATURE_MESHES = 1 << 7,        /* triangles */
     FEATURE_LIGHT_SAMPLES = 1 << 8, /* several shadow rays per hit */
-    FEATURE_ALL = (1 << 9) - 1
+    FEATURE_TEXTURES = 1 << 9,      /* a material that some primitive uses has a texture */
+    FEATURE_ALL = (1 << 10) - 1
 };
 
 /* The features of a prepared scene. */

@@ -31,9 +31,12 @@ enum vkind {
     V_RGB,       /* one number (grey) or three, none negative */
     V_ALBEDO,    /* V_RGB at most 1: a surface reflecting more than arrives would create energy */
     V_ALBEDO_OR_NONE, /* V_ALBEDO, or no number at all (metal: then 'eta' and 'k' say it) */
+    V_COLOR,     /* V_ALBEDO, or no number at all when the material has a texture */
+    V_ALBEDO2,   /* two albedos of one number each, or of three (a checker's two colours) */
+    V_UV,        /* one number (for u and v) or two, neither zero (a texture's scale) */
     V_UNIT,      /* one number in [0, 1] */
     V_CHOICE,    /* one of the key's words */
-    V_NAME,      /* a material name */
+    V_NAME,      /* the name of a material or texture (the key's noun says which) */
     V_PATH,      /* a quoted string */
     V_FLAG,      /* no value */
     V_SCALE,     /* mesh transform steps: repeatable, applied in the order written */
@@ -47,7 +50,8 @@ struct key {
     double lo, hi;               /* V_REAL, V_INT */
     const char *rule;            /* V_REAL: what the range is, for the message */
     const char *const *choices;  /* V_CHOICE: NULL-terminated, indexed by the enum */
-    const char *noun;            /* V_ALBEDO: what the number is, for the message */
+    const char *noun;            /* V_ALBEDO: what the number is, for the message; V_NAME: what
+                                    is named */
 };
 
 /* The most keys of a block: the mesh's 11, or the material's (a key per material kind and its
@@ -55,13 +59,16 @@ struct key {
 #define MATERIAL_KEY_COUNT (MC_MATERIAL_COUNT + MC_KEY_COUNT)
 #define MAX_KEYS (MATERIAL_KEY_COUNT > 11 ? MATERIAL_KEY_COUNT : 11)
 
+/* The most numbers a key takes: a checker's two colours. */
+#define MAX_NUMBERS 6
+
 /* The values of one block as given; the finishing function applies defaults. */
 struct value {
     int set;
     struct token key;            /* the key, for messages */
     int n;                       /* numbers given */
-    double x[4];
-    struct token at[4];          /* the number tokens, for messages */
+    double x[MAX_NUMBERS];
+    struct token at[MAX_NUMBERS]; /* the number tokens, for messages */
     struct token arg;            /* V_CHOICE, V_NAME, V_PATH: the word or string */
     int choice;
 };
@@ -104,6 +111,13 @@ struct matref {
     size_t first, last;          /* the shape's primitives [first, last) */
 };
 
+/* A material's `texture NAME` or `roughness_texture NAME`, resolved likewise. */
+struct texref {
+    struct token name;
+    size_t material;             /* the scene's material index */
+    int roughness;               /* its roughness_texture, else its texture */
+};
+
 struct parser {
     struct lexer lx;
     struct token tok;            /* the lookahead */
@@ -114,6 +128,10 @@ struct parser {
     mcrt_status status;
     struct matref *refs;
     size_t nrefs, cap_refs;
+    struct texref *texrefs;
+    size_t ntexrefs, cap_texrefs;
+    struct token *texdefs;       /* name token of each texture this file defined, in order */
+    size_t ntexdefs, cap_texdefs, first_texture;
     struct token *defs;          /* name token of each material this file defined, in order */
     size_t ndefs, cap_defs, first_material;
     struct block_kinds kinds;
@@ -265,7 +283,7 @@ static void read_numbers(struct parser *p, struct value *v)
             fail(p, &p->tok, "'%.*s' is not a finite number", (int)p->tok.len, p->tok.text);
         if (p->tok.kind != TOK_NUMBER)
             return;
-        if (v->n < 4) {
+        if (v->n < MAX_NUMBERS) {
             /* Rounded to float first, so that every check sees the value the scene stores
              * (1e-50 is a zero scale, not a tiny one). */
             v->x[v->n] = (float)p->tok.num;
@@ -280,16 +298,24 @@ static void check_count(struct parser *p, const struct block *b, const struct ke
                         const struct value *v)
 {
     int one_or_three = k->kind == V_RGB || k->kind == V_ALBEDO || k->kind == V_SCALE
-                       || k->kind == V_ALBEDO_OR_NONE;
+                       || k->kind == V_ALBEDO_OR_NONE || k->kind == V_COLOR;
     int want = k->kind == V_POINT || k->kind == V_TRANSLATE       ? 3
                : k->kind == V_ROTATE || k->kind == V_SPIN ? 4
                : k->kind == V_PAIR                        ? 2
                                                           : 1;
-    if (one_or_three ? v->n == 1 || v->n == 3 || (v->n == 0 && k->kind == V_ALBEDO_OR_NONE)
-                     : v->n == want)
+    if (k->kind == V_ALBEDO2 ? v->n == 2 || v->n == 6
+        : k->kind == V_UV    ? v->n == 1 || v->n == 2
+        : one_or_three
+            ? v->n == 1 || v->n == 3 || (v->n == 0 && (k->kind == V_ALBEDO_OR_NONE || k->kind == V_COLOR))
+            : v->n == want)
         return;
     if (p->tok.kind == TOK_EOF)
         fail_unclosed(p, b);
+    if (k->kind == V_ALBEDO2)
+        fail(p, &v->key, "'%s' needs 2 numbers (two greys) or 6 (two RGB colours), found %d",
+             k->name, v->n);
+    if (k->kind == V_UV)
+        fail(p, &v->key, "'%s' needs 1 or 2 numbers, found %d", k->name, v->n);
     if (k->kind == V_ALBEDO_OR_NONE)
         fail(p, &v->key, "'%s' needs 1 or 3 numbers, or none with 'eta' and 'k', found %d",
              k->name, v->n);
@@ -458,9 +484,16 @@ static void check_numbers(struct parser *p, const struct key *k, const struct va
         if (!(v->x[0] >= 0.0 && v->x[0] <= 1.0))
             fail(p, &v->at[0], "'%s' must be between 0 and 1", k->name);
         break;
+    case V_UV:
+        for (i = 0; i < v->n; i++)
+            if (v->x[i] == 0.0)
+                fail(p, &v->at[i], "'%s' must not be zero", k->name);
+        break;
     case V_RGB:
     case V_ALBEDO:
     case V_ALBEDO_OR_NONE:
+    case V_COLOR:
+    case V_ALBEDO2:
         for (i = 0; i < v->n; i++) {
             if (v->x[i] < 0.0)
                 fail(p, &v->at[i], "'%s' must not be negative", k->name);
@@ -500,7 +533,7 @@ static void read_key(struct parser *p, struct block *b)
         if (p->tok.kind == TOK_EOF)
             fail_unclosed(p, b);
         if (k->kind == V_NAME && p->tok.kind != TOK_WORD)
-            fail(p, &v->key, "'%s' needs a material name", k->name);
+            fail(p, &v->key, "'%s' needs a %s name", k->name, k->noun);
         if (k->kind == V_PATH && p->tok.kind != TOK_STRING)
             fail(p, &v->key, "'%s' needs a path in double quotes", k->name);
         if (p->tok.len == 0)
@@ -658,7 +691,7 @@ static void finish_integrator(struct parser *p, struct block *b)
 /* The material block's keys: first one per kind of the material table (materials.def), whose
  * keyword is followed by what enum mc_material_value says, exactly one of them given; then the
  * further keys, in enum mc_material_key order. */
-#define V_OF_ALBEDO V_ALBEDO
+#define V_OF_ALBEDO V_COLOR
 #define V_OF_NONE V_FLAG
 #define V_OF_ALBEDO_OR_NONE V_ALBEDO_OR_NONE
 #define MAT_KEY(key) (MC_MATERIAL_COUNT + (key))
@@ -672,6 +705,8 @@ static const struct key material_keys[] = {
     {"alpha", V_UNIT, 0, 0, NULL, NULL, NULL},
     {"eta", V_RGB, 0, 0, NULL, NULL, NULL},
     {"k", V_RGB, 0, 0, NULL, NULL, NULL},
+    {"texture", V_NAME, 0, 0, NULL, NULL, "texture"},
+    {"roughness_texture", V_NAME, 0, 0, NULL, NULL, "texture"},
 };
 typedef char check_material_key_count[sizeof material_keys / sizeof material_keys[0] == MATERIAL_KEY_COUNT ? 1 : -1];
 
@@ -709,38 +744,63 @@ static void kind_list(char *buf, size_t size, unsigned keys, int quoted, const c
     }
 }
 
+/* A named block's name into name[size) (a material's or a texture's, as b's kind says), which
+ * must be new: find looks the name up in the scene, defs[i − first] is the name token of this
+ * file's definition i. */
+static void new_name(struct parser *p, const struct block *b, char *name, size_t size,
+                     int (*find)(const struct scene *, const char *), const struct token *defs,
+                     size_t first)
+{
+    const struct token *nm = &b->name;
+    const char *what = b->kind->name;
+    int existing;
+    if (nm->len >= size)
+        fail(p, nm, "%s name longer than %d characters", what, (int)size - 1);
+    memcpy(name, nm->text, nm->len);
+    name[nm->len] = '\0';
+    existing = find(p->s, name);
+    if (existing >= (int)first) {
+        const struct token *d = &defs[(size_t)existing - first];
+        fail(p, nm, "duplicate %s '%s' (first defined at %d:%d)", what, name, d->line, d->col);
+    }
+    if (existing >= 0)
+        fail(p, nm, "duplicate %s '%s'", what, name);
+}
+
+/* The one of b's first n keys (a kind of material or texture) that is given, or -1 when none is;
+ * two are an error. */
+static int one_kind(struct parser *p, const struct block *b, int n, const char *name)
+{
+    int i, first = -1;
+    for (i = 0; i < n; i++) {
+        const struct value *v = &b->v[i];
+        if (!v->set)
+            continue;
+        if (first >= 0)
+            fail(p, after(&v->key, &b->v[first].key) ? &v->key : &b->v[first].key,
+                 "%s '%s' has both '%s' and '%s': give one", b->kind->name, name,
+                 b->kind->keys[first].name, b->kind->keys[i].name);
+        first = i;
+    }
+    return first;
+}
+
 static void finish_material(struct parser *p, struct block *b)
 {
     const struct token *nm = &b->name;
     const struct mc_material_kind *kind;
     const struct value *rough = &b->v[MAT_KEY(MC_KEY_ROUGHNESS)], *alpha = &b->v[MAT_KEY(MC_KEY_ALPHA)];
     const struct value *tint = &b->v[MAT_KEY(MC_KEY_TINT)], *ior = &b->v[MAT_KEY(MC_KEY_IOR)];
+    const struct value *tex = &b->v[MAT_KEY(MC_KEY_TEXTURE)];
+    const struct value *rtex = &b->v[MAT_KEY(MC_KEY_ROUGHNESS_TEXTURE)];
     struct material m;
     struct mc_material_problem problem;
     char kinds[160];
     unsigned given = 0;
-    int i, count = 0, first = -1, idx;
-    if (nm->len >= sizeof m.name)
-        fail(p, nm, "material name longer than %d characters", (int)sizeof m.name - 1);
+    int i, first, idx;
     memset(&m, 0, sizeof m);
-    memcpy(m.name, nm->text, nm->len);
-    if ((idx = mc_scene_find_material(p->s, m.name)) >= (int)p->first_material) {
-        const struct token *d = &p->defs[(size_t)idx - p->first_material];
-        fail(p, nm, "duplicate material '%s' (first defined at %d:%d)", m.name, d->line, d->col);
-    }
-    if (idx >= 0)
-        fail(p, nm, "duplicate material '%s'", m.name);
-    for (i = 0; i < MC_MATERIAL_COUNT; i++) {
-        const struct value *v = &b->v[i], *f = &b->v[first < 0 ? i : first];
-        if (!v->set)
-            continue;
-        if (count++)
-            fail(p, after(&v->key, &f->key) ? &v->key : &f->key,
-                 "material '%s' has both '%s' and '%s': give one", m.name,
-                 material_keys[first].name, material_keys[i].name);
-        first = i;
-    }
-    if (!count) {
+    new_name(p, b, m.name, sizeof m.name, mc_scene_find_material, p->defs, p->first_material);
+    if ((first = one_kind(p, b, MC_MATERIAL_COUNT, m.name)) < 0) {
         kind_list(kinds, sizeof kinds, 0, 1, " or ");
         fail(p, nm, "material '%s' needs one of %s", m.name, kinds);
     }
@@ -761,10 +821,15 @@ static void finish_material(struct parser *p, struct block *b)
     m.kind = kind;
     if (b->v[first].n > 0)
         given |= MC_GIVEN_VALUE;
+    else if (material_keys[first].kind == V_COLOR && !tex->set)
+        fail(p, &b->v[first].key, "'%s' needs 1 or 3 numbers, or a 'texture'", kind->name);
+    /* A texture's colour is scaled by the numbers given (1 without). */
     m.color = b->v[first].n > 0 ? vec_of(&b->v[first]) : tint->set ? vec_of(tint) : v3s(1.0f);
     m.ior = ior->set ? (float)ior->x[0] : 1.5f;
-    /* Perceptual roughness r maps to α = r² (Burley 2012; pbrt-v4 remaproughness). */
-    m.alpha = alpha->set ? (float)alpha->x[0] : rough->set ? (float)(rough->x[0] * rough->x[0]) : 0.0f;
+    /* Perceptual roughness r maps to α = r² (Burley 2012; pbrt-v4 remaproughness); a roughness
+     * texture gives r, scaled by the roughness given (1 without). */
+    m.alpha = alpha->set ? (float)alpha->x[0] : rough->set ? (float)(rough->x[0] * rough->x[0])
+              : rtex->set ? 1.0f : 0.0f;
     m.eta = vec_or(b, MAT_KEY(MC_KEY_ETA), v3s(0.0f));
     m.k = vec_or(b, MAT_KEY(MC_KEY_K), v3s(0.0f));
     if (kind->ops->complete && !kind->ops->complete(&m, given, &problem)) {
@@ -773,13 +838,81 @@ static void finish_material(struct parser *p, struct block *b)
     }
     p->defs = grow(p, p->defs, &p->cap_defs, p->ndefs, sizeof *p->defs);
     p->defs[p->ndefs++] = *nm;
-    if (mc_scene_add_material(p->s, &m) < 0)
+    if ((idx = mc_scene_add_material(p->s, &m)) < 0)
+        fail_nomem(p);
+    for (i = 0; i < 2; i++) {
+        const struct value *v = i ? rtex : tex;
+        struct texref *r;
+        if (!v->set)
+            continue;
+        p->texrefs = grow(p, p->texrefs, &p->cap_texrefs, p->ntexrefs, sizeof *p->texrefs);
+        r = &p->texrefs[p->ntexrefs++];
+        r->name = v->arg;
+        r->material = (size_t)idx;
+        r->roughness = i;
+    }
+}
+
+/* The texture block's keys: one per kind of MC_TEXTURES, exactly one of them given, then the
+ * mapping of the texture coordinates. */
+#define TEXTURE_KEY(kind, name) \
+    {#name, kind == TEXTURE_IMAGE ? V_PATH : V_ALBEDO2, 0, 0, NULL, NULL, "a texture's colour"},
+enum { TEX_SCALE = TEXTURE_KIND_COUNT, TEX_OFFSET };
+static const struct key texture_keys[] = {
+    MC_TEXTURES(TEXTURE_KEY)
+    {"scale", V_UV, 0, 0, NULL, NULL, NULL},
+    {"offset", V_PAIR, 0, 0, NULL, NULL, NULL},
+};
+#undef TEXTURE_KEY
+
+/* Where a token is, as "FILE:LINE:COL", for messages that come later (an image's). */
+static void origin_of(const struct parser *p, const struct token *t, char *buf, size_t size)
+{
+    snprintf(buf, size, "%s:%d:%d", p->name, t->line, t->col);
+}
+
+static char *file_path(struct parser *p, const struct token *file);
+
+static void finish_texture(struct parser *p, struct block *b)
+{
+    const struct token *nm = &b->name;
+    const struct value *scale = &b->v[TEX_SCALE], *offset = &b->v[TEX_OFFSET];
+    struct texture t;
+    int first;
+    memset(&t, 0, sizeof t);
+    new_name(p, b, t.name, sizeof t.name, mc_scene_find_texture, p->texdefs, p->first_texture);
+    if ((first = one_kind(p, b, TEXTURE_KIND_COUNT, t.name)) < 0)
+        fail(p, nm, "texture '%s' needs 'image \"FILE\"' or 'checker A B'", t.name);
+    t.kind = (enum texture_kind)first;
+    t.scale = scale->set ? v2((float)scale->x[0], (float)scale->x[scale->n - 1]) : v2(1.0f, 1.0f);
+    t.offset = offset->set ? v2((float)offset->x[0], (float)offset->x[1]) : v2(0.0f, 0.0f);
+    if (t.kind == TEXTURE_IMAGE) {
+        char origin[600], *path = file_path(p, &b->v[first].arg);
+        int k;
+        origin_of(p, &b->v[first].arg, origin, sizeof origin);
+        k = mc_scene_add_image(p->s, path, origin);
+        free(path);
+        if (k < 0)
+            fail_nomem(p);
+        t.image = k + 1;
+    } else {
+        const struct value *v = &b->v[first];
+        int h = v->n / 2;
+        struct value half = *v;
+        half.n = h;
+        t.even = vec_of(&half);
+        memmove(half.x, v->x + h, (size_t)h * sizeof *half.x);
+        t.odd = vec_of(&half);
+    }
+    p->texdefs = grow(p, p->texdefs, &p->cap_texdefs, p->ntexdefs, sizeof *p->texdefs);
+    p->texdefs[p->ntexdefs++] = *nm;
+    if (mc_scene_add_texture(p->s, &t) < 0)
         fail_nomem(p);
 }
 
 /* Every shape takes these first five keys. */
 #define SHAPE_KEYS                                                                             \
-    {"material", V_NAME, 0, 0, NULL, NULL, NULL}, {"emit", V_RGB, 0, 0, NULL, NULL, NULL},     \
+    {"material", V_NAME, 0, 0, NULL, NULL, "material"}, {"emit", V_RGB, 0, 0, NULL, NULL, NULL},     \
     {"two_sided", V_FLAG, 0, 0, NULL, NULL, NULL}, {"flip", V_FLAG, 0, 0, NULL, NULL, NULL},  \
     {"move", V_POINT, 0, 0, NULL, NULL, NULL}
 enum { SHAPE_MATERIAL, SHAPE_EMIT, SHAPE_TWO_SIDED, SHAPE_FLIP, SHAPE_MOVE, SHAPE_KEYS_END };
@@ -889,8 +1022,10 @@ static void param_values(struct parser *p, const struct block *b, int first,
             snprintf(what, sizeof what, "%s '%s' axis", b->kind->name, params[i].name);
             v[i] = v3_scale(unit_of(p, val, what), (float)val->x[3]);
         } else if (params[i].kind == PARAM_IMAGE) {
-            char *path = file_path(p, &val->arg);
-            int k = mc_scene_add_image(p->s, path);
+            char *path = file_path(p, &val->arg), origin[600];
+            int k;
+            origin_of(p, &val->arg, origin, sizeof origin);
+            k = mc_scene_add_image(p->s, path, origin);
             free(path);
             if (k < 0)
                 fail_nomem(p);
@@ -942,7 +1077,7 @@ static void finish_mesh(struct parser *p, struct block *b)
     int i;
     if (!b->v[MESH_FILE].set)
         fail(p, &b->head, "mesh needs 'file \"NAME.obj\"'");
-    snprintf(origin, sizeof origin, "%s:%d:%d", p->name, file->line, file->col);
+    origin_of(p, file, origin, sizeof origin);
     m.path = file_path(p, file);
     m.origin = origin;
     for (i = 0; i < 12; i++)
@@ -976,6 +1111,7 @@ static const struct block_kind kinds_before_shapes[] = {
     {"film", KEYS(film_keys), 1, 0, finish_film, -1, -1},
     {"camera", KEYS(camera_keys), 1, 0, finish_camera, -1, -1},
     {"integrator", KEYS(integrator_keys), 1, 0, finish_integrator, -1, -1},
+    {"texture", KEYS(texture_keys), 0, 1, finish_texture, -1, -1},
     {"material", KEYS(material_keys), 0, 1, finish_material, -1, -1},
 };
 static const struct block_kind mesh_kind = {"mesh", KEYS(mesh_keys), 0, 0, finish_mesh, -1, -1};
@@ -1166,6 +1302,37 @@ static void resolve_materials(struct parser *p)
     }
 }
 
+static void resolve_textures(struct parser *p)
+{
+    size_t i, j;
+    for (i = 0; i < p->ntexrefs; i++) {
+        const struct texref *r = &p->texrefs[i];
+        const struct token *t = &r->name;
+        char name[sizeof p->s->textures[0].name];
+        struct material *m = &p->s->materials[r->material];
+        int idx = -1;
+        if (t->len < sizeof name) {
+            memcpy(name, t->text, t->len);
+            name[t->len] = '\0';
+            idx = mc_scene_find_texture(p->s, name);
+        }
+        if (idx < 0) {
+            struct match mt = matcher(t);
+            for (j = 0; j < p->s->texture_count; j++)
+                consider(&mt, p->s->textures[j].name);
+            if (mt.best)
+                fail(p, t, "unknown texture '%.*s' (did you mean '%s'?)", (int)t->len, t->text,
+                     mt.best);
+            fail(p, t, "unknown texture '%.*s'%s", (int)t->len, t->text,
+                 p->s->texture_count ? "" : " (no texture is defined)");
+        }
+        if (r->roughness)
+            m->roughness_texture = idx + 1;
+        else
+            m->texture = idx + 1;
+    }
+}
+
 static void read_scene(struct parser *p)
 {
     int blocks = 0;
@@ -1175,6 +1342,7 @@ static void read_scene(struct parser *p)
     if (!blocks)
         fail(p, &p->tok, "empty scene: a scene needs at least one block, such as 'sphere { }'");
     resolve_materials(p);
+    resolve_textures(p);
 }
 
 /* The setjmp lives apart from mc_scene_parse so that the parser state it longjmps over belongs to
@@ -1204,10 +1372,13 @@ mcrt_status mc_scene_parse(struct scene *s, const char *text, size_t len, const 
     p.base_dir = base_dir;
     p.d = d;
     p.first_material = s->material_count;
+    p.first_texture = s->texture_count;
     block_kinds_make(&p.kinds);
     mc_lex_init(&p.lx, text, len, name, d);
     st = run(&p);
     free(p.refs);
     free(p.defs);
+    free(p.texrefs);
+    free(p.texdefs);
     return st;
 }

@@ -96,6 +96,30 @@ static mcrt_status build_envmap(struct scene *s, struct light *env, mc_diag *d)
     return MCRT_OK;
 }
 
+/* Image textures take their image's pixels, which the API layer has read (scene.h), and check
+ * them. */
+static mcrt_status prepare_textures(struct scene *s, mc_diag *d)
+{
+    size_t i;
+    for (i = 0; i < s->texture_count; i++) {
+        struct texture *t = &s->textures[i];
+        const struct scene_image *im;
+        mcrt_status st;
+        if (t->kind != TEXTURE_IMAGE)
+            continue;
+        im = &s->images[t->image - 1];
+        if (!im->rgb)
+            return mc_fail(d, MCRT_ERR_INVALID, "%s: the image of texture '%s' was not read",
+                           im->origin, t->name);
+        t->rgb = im->rgb;
+        t->w = im->w;
+        t->h = im->h;
+        if ((st = mc_texture_check(t, im->origin, d)) != MCRT_OK)
+            return st;
+    }
+    return MCRT_OK;
+}
+
 mcrt_status mc_scene_prepare(struct scene *s, mc_diag *d)
 {
     size_t i;
@@ -109,6 +133,8 @@ mcrt_status mc_scene_prepare(struct scene *s, mc_diag *d)
         return mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
     for (i = 0; i < s->material_count; i++)
         mc_bsdf_prepare(&s->materials[i]);
+    if ((st = prepare_textures(s, d)) != MCRT_OK)
+        return st;
     /* Both builds reorder primitives, so lights (which index them) are made after. */
     st = partition(s, d);
     if (st == MCRT_OK)

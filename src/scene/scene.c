@@ -54,9 +54,11 @@ void mc_scene_free(struct scene *s)
     while (s->image_count > 0) {
         s->image_count--;
         free(s->images[s->image_count].path);
+        free(s->images[s->image_count].origin);
         free(s->images[s->image_count].rgb);
     }
     free(s->images);
+    free(s->textures);
     if (s->envmap)
         mc_envmap_free(s->envmap);
     free(s->envmap);
@@ -127,19 +129,63 @@ int mc_scene_add_light(struct scene *s, const struct light *l)
     return push((void **)&s->lights, &s->light_count, &s->light_cap, sizeof *l, l);
 }
 
-int mc_scene_add_image(struct scene *s, const char *path)
+static char *copy_string(const char *text)
+{
+    char *c = mc_malloc(strlen(text) + 1);
+    if (c)
+        strcpy(c, text);
+    return c;
+}
+
+int mc_scene_add_image(struct scene *s, const char *path, const char *origin)
 {
     struct scene_image im;
-    int i;
+    int i = -1;
     memset(&im, 0, sizeof im);
-    im.path = mc_malloc(strlen(path) + 1);
-    if (!im.path)
-        return -1;
-    strcpy(im.path, path);
-    i = push((void **)&s->images, &s->image_count, &s->image_cap, sizeof im, &im);
-    if (i < 0)
+    im.path = copy_string(path);
+    im.origin = copy_string(origin);
+    if (im.path && im.origin)
+        i = push((void **)&s->images, &s->image_count, &s->image_cap, sizeof im, &im);
+    if (i < 0) {
         free(im.path);
+        free(im.origin);
+    }
     return i;
+}
+
+int mc_scene_add_texture(struct scene *s, const struct texture *t)
+{
+    return push((void **)&s->textures, &s->texture_count, &s->texture_cap, sizeof *t, t);
+}
+
+int mc_scene_image_texture(struct scene *s, const char *name, const char *path, const char *origin)
+{
+    struct texture t;
+    size_t i;
+    int k;
+    for (i = 0; i < s->texture_count; i++) {
+        const struct texture *e = &s->textures[i];
+        if (e->kind == TEXTURE_IMAGE && strcmp(s->images[e->image - 1].path, path) == 0
+            && e->scale.x == 1.0f && e->scale.y == 1.0f && e->offset.x == 0.0f && e->offset.y == 0.0f)
+            return (int)i;
+    }
+    memset(&t, 0, sizeof t);
+    strncpy(t.name, name, sizeof t.name - 1);
+    t.kind = TEXTURE_IMAGE;
+    t.scale = v2(1.0f, 1.0f);
+    if ((k = mc_scene_add_image(s, path, origin)) < 0)
+        return -1;
+    t.image = k + 1;
+    return mc_scene_add_texture(s, &t);
+}
+
+int mc_scene_find_texture(const struct scene *s, const char *name)
+{
+    size_t i;
+    for (i = 0; i < s->texture_count; i++)
+        if (strcmp(s->textures[i].name, name) == 0)
+            return (int)i;
+    return -1;
 }
 
 void mc_scene_set_image(struct scene *s, size_t i, float *rgb, int w, int h)

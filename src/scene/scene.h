@@ -17,6 +17,7 @@
 #include "sample/filter.h"   /* enum filter_kind */
 #include "sample/sampler.h"  /* enum sampler_kind */
 #include "scene/integrators.h"
+#include "scene/texture.h"
 
 #define MC_INTEGRATOR_ENUM(id, name) INTEGRATOR_##id,
 enum integrator_kind { MC_INTEGRATORS(MC_INTEGRATOR_ENUM) INTEGRATOR_COUNT };
@@ -46,10 +47,13 @@ struct integrator_desc {
     float alpha;                     /* the fraction of new photons kept: 2/3 */
 };
 
-/* An image file the scene uses (an environment map): the parser names it, the API layer reads it
- * (the core reads no image file, src/README) and hands the pixels over with mc_scene_set_image. */
+/* An image file the scene uses (an environment map, an image texture): the parser names it, the
+ * API layer reads it (the core reads no image file, src/README) and hands the pixels over with
+ * mc_scene_set_image. */
 struct scene_image {
     char *path;                      /* as opened: under the scene's folder (owned) */
+    char *origin;                    /* where the scene names it, "FILE:LINE:COL", for messages
+                                        about the image (owned) */
     float *rgb;                      /* w·h·3 linear floats, rows top to bottom; NULL until set
                                         (owned, malloc'd) */
     int w, h;
@@ -81,6 +85,8 @@ struct scene {
 
     struct scene_image *images;
     size_t image_count, image_cap;
+    struct texture *textures;        /* what materials' texture fields index (minus 1) */
+    size_t texture_count, texture_cap;
     struct envmap *envmap;           /* the environment's map, built by prepare (or NULL) */
 
     /* Built by mc_scene_prepare: prims[0, static_count) are static, in `bvh`; the moving ones
@@ -110,8 +116,18 @@ int mc_scene_add_light(struct scene *s, const struct light *l);
 /* A motion, for prims whose `motion` field is the returned index + 1; -1 when out of memory or
  * past 65535 motions. */
 int mc_scene_add_motion(struct scene *s, const struct motion *m);
-/* An image to be read from path (copied); the new image's index, or -1 when out of memory. */
-int mc_scene_add_image(struct scene *s, const char *path);
+/* An image to be read from path, named at origin ("FILE:LINE:COL"; both copied); the new image's
+ * index, or -1 when out of memory. */
+int mc_scene_add_image(struct scene *s, const char *path, const char *origin);
+/* A texture (copied); its index, or -1 when out of memory. */
+int mc_scene_add_texture(struct scene *s, const struct texture *t);
+/* The index of an image texture of the file at path, named at origin ("FILE:LINE:COL", for its
+ * messages), untransformed: an existing one if the scene has it, else a new one called `name`
+ * (cut to 63 bytes), whose image is read with the scene's others (mc_scene_add_image). -1 when
+ * out of memory. For the scene language's `texture` block and OBJ materials' maps alike. */
+int mc_scene_image_texture(struct scene *s, const char *name, const char *path, const char *origin);
+/* Index of the texture with this name, or -1. */
+int mc_scene_find_texture(const struct scene *s, const char *name);
 /* Give image i its pixels: rgb (w·h·3 floats, malloc'd) becomes the scene's. */
 void mc_scene_set_image(struct scene *s, size_t i, float *rgb, int w, int h);
 /* Index of the material with this name, or -1. */
@@ -130,6 +146,9 @@ void mc_scene_surface(const struct scene *s, const struct ray *r, const struct h
                       struct surface *sf);
 /* The texture coordinates of the hit (mc_prim_uv), a moving primitive's in its own frame. */
 vec2 mc_scene_uv(const struct scene *s, const struct ray *r, const struct hit *h);
+/* The BSDF at a hit: its primitive's material, with its textures evaluated at the hit's texture
+ * coordinates (material.h says how). A material without textures costs one test. */
+void mc_scene_bsdf(const struct scene *s, const struct ray *r, const struct hit *h, struct bsdf *b);
 
 /* Parse scene text (parse.c). name is used in messages; base_dir is where relative OBJ paths start
  * (NULL = current directory). On failure the message is "name:line:col: what is wrong" and s is

@@ -41,6 +41,27 @@ vec2 mc_scene_uv(const struct scene *s, const struct ray *r, const struct hit *h
     }
 }
 
+void mc_scene_bsdf(const struct scene *s, const struct ray *r, const struct hit *h, struct bsdf *b)
+{
+    const struct material *m = &s->materials[s->prims[h->prim].material];
+    vec3 color = m->color;
+    float alpha = m->alpha;
+    vec2 uv;
+    if (!m->texture && !m->roughness_texture) {
+        mc_bsdf_init(b, m);
+        return;
+    }
+    uv = mc_scene_uv(s, r, h);
+    if (m->texture)
+        color = v3_mul(color, mc_texture_eval(&s->textures[m->texture - 1], uv));
+    if (m->roughness_texture) {
+        vec3 t = mc_texture_eval(&s->textures[m->roughness_texture - 1], uv);
+        float rough = (t.x + t.y + t.z) * (1.0f / 3.0f);
+        alpha *= rough * rough;
+    }
+    mc_bsdf_init_at(b, m, color, alpha);
+}
+
 void mc_scene_surface(const struct scene *s, const struct ray *r, const struct hit *h,
                       struct surface *sf)
 {

@@ -20,7 +20,7 @@ static void print_word(void *user, const char *block, const char *key, const cha
 
 int main(void)
 {
-    static const char *const sets[] = {"integrator", "sampler", "aov", "filter", "shape", "light", "material"};
+    static const char *const sets[] = {"integrator", "sampler", "aov", "filter", "shape", "light", "material", "texture"};
     size_t i;
     mc_scene_words(print_word, NULL);
     for (i = 0; i < sizeof sets / sizeof sets[0]; i++) {
