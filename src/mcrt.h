@@ -79,6 +79,10 @@ mcrt_status mcrt_scene_load_file(mcrt_scene *s, const char *path);
 mcrt_status mcrt_scene_load_string(mcrt_scene *s, const char *text, size_t len, const char *name);
 /* The last error on s, "" if none. Owned by s. */
 const char *mcrt_scene_error(const mcrt_scene *s);
+/* What the last successful load of s ignored or doubted in its input but could read past (an
+ * MTL statement mcrt does not support, say): lines "file:line:col: warning: what", each ending in
+ * a newline, each said once; "" if none (and after a failed load). Owned by s. */
+const char *mcrt_scene_warnings(const mcrt_scene *s);
 /* The film size and spp the scene asks for (NULL pointers are skipped). */
 void mcrt_scene_film(const mcrt_scene *s, int *width, int *height, int *spp);
 /* What a loaded scene uses and what it costs, as `mcrt info` prints it: lines "key: value" with

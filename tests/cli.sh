@@ -294,4 +294,27 @@ else
     fail "constant environment map: white furnace" "status $rc: $(cat "$tmp/err" "$tmp/diff.txt")"
 fi
 
+# ---- OBJ materials (man/mcrt.5): a bad MTL file is one file:line:col line and exit 2, the output
+# untouched; a statement mcrt ignores is one warning on stderr (none with --quiet), the render
+# going on.
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nmtllib tri.mtl\nusemtl a\nf 1 2 3\n' >"$tmp/tri.obj"
+printf 'camera { eye 0.3 0.3 2 look 0.3 0.3 0 }\nfilm { width 8 height 8 spp 1 }\nmesh { file "tri.obj" }\n' \
+    >"$tmp/tri.mcrt"
+printf 'newmtl a\nKd 0.5\nNs x\n' >"$tmp/tri.mtl"
+printf 'keep' >"$tmp/kept.pfm"
+expect "malformed MTL file" 2 "^\./tri\.mtl:3:4: malformed number 'x'$" tri.mcrt -o kept.pfm
+if [ "$(cat "$tmp/kept.pfm")" = keep ]; then ok "malformed MTL file: output untouched"; else
+    fail "malformed MTL file: output untouched" "it changed"; fi
+printf 'newmtl a\nKd 0.5\nmap_Ks spec.png\nmap_Ks spec2.png\n' >"$tmp/tri.mtl"
+run tri.mcrt -o tri.pfm
+if [ "$rc" -eq 0 ] && [ "$(grep -c warning "$tmp/err")" -eq 1 ] &&
+    grep -q "^\./tri\.mtl:3:1: warning: 'map_Ks' is ignored" "$tmp/err"; then
+    ok "ignored MTL statement: one warning, the render done"
+else
+    fail "ignored MTL statement: one warning, the render done" "status $rc: $(cat "$tmp/err")"
+fi
+run tri.mcrt -o tri.pfm --quiet
+if [ "$rc" -eq 0 ] && [ ! -s "$tmp/err" ]; then ok "--quiet: no warnings"; else
+    fail "--quiet: no warnings" "status $rc: $(cat "$tmp/err")"; fi
+
 finish

@@ -63,7 +63,7 @@ done
 
 # ---- mcrt.5 and mcrt.1: the names the code knows ----
 # From the code's own tables, as tests/tools/words prints them: every block kind, key and keyword
-# value of the scene language (the parser's tables) must be in mcrt.5, and every sampler and image
+# value of the scene language (the parser's tables) and every MTL statement must be in mcrt.5, and every sampler and image
 # layer name (mcrt_names) in mcrt.1.
 t5=$(terms man/mcrt.5)
 words=$O/tests/words
@@ -71,6 +71,9 @@ if [ -x "$words" ] && "$words" >"$tmp/words" 2>&1 && grep -q '^block ' "$tmp/wor
     # shellcheck disable=SC2046 # word splitting of the lists is intended
     check_words "mcrt.5 documents every block kind, key and keyword value of the parser" "$t5" \
         $(awk '$1 == "block" || $1 == "key" || $1 == "value" { print $NF }' "$tmp/words" | sort -u)
+    # shellcheck disable=SC2046
+    check_words "mcrt.5 documents every MTL statement the reader knows" "$t5" \
+        $(sed -n 's/^mtl //p' "$tmp/words" | sort -u)
     # shellcheck disable=SC2046
     check_words "mcrt.1 documents every sampler and image layer" "$(terms man/mcrt.1)" \
         $(sed -n 's/^\(sampler\|aov\) //p' "$tmp/words" | sort -u)

@@ -8,7 +8,7 @@
 CC=${CC:-cc}
 TMPDIR=$tmp
 export TMPDIR
-for target in scene obj; do
+for target in scene obj mtl; do
     bin=$tmp/replay_$target
     if ! $CC -std=c99 -D_POSIX_C_SOURCE=200809L -O1 -g -Isrc $LDFLAGS -o "$bin" tests/fuzz/replay.c \
         "tests/fuzz/fuzz_$target.c" "$O/libmcrt.a" -lpthread -lm 2>"$tmp/err"; then

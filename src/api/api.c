@@ -95,6 +95,11 @@ void mcrt_scene_free(mcrt_scene *s)
 
 const char *mcrt_scene_error(const mcrt_scene *s) { return s ? s->err.msg : "no scene"; }
 
+const char *mcrt_scene_warnings(const mcrt_scene *s)
+{
+    return s && s->s.warnings ? s->s.warnings : "";
+}
+
 /* Read the image files the parsed scene names: the core reads none itself (src/README). */
 static mcrt_status read_images(struct scene *sc, mc_diag *d)
 {

@@ -413,6 +413,8 @@ static int render(const struct render_args *a, const char *output)
         mcrt_scene_free(scene);
         return status == MCRT_ERR_NOMEM ? STATUS_FAIL : STATUS_USAGE;
     }
+    if (!a->quiet)
+        fputs(mcrt_scene_warnings(scene), stderr);
     o = a->o;
     if (!a->quiet && isatty(STDERR_FILENO)) {
         prog.start = now();
@@ -542,6 +544,7 @@ static int cmd_info(int argc, char **argv)
         fprintf(stderr, "%s\n", mcrt_scene_error(scene));
         code = status == MCRT_ERR_NOMEM ? STATUS_FAIL : STATUS_USAGE;
     } else {
+        fputs(mcrt_scene_warnings(scene), stderr);
         fputs(mcrt_scene_info(scene), stdout);
         code = fflush(stdout) == 0 ? STATUS_OK : STATUS_FAIL;
     }
@@ -614,11 +617,14 @@ static int cmd_pov(int argc, char **argv)
     if (status != MCRT_OK) { /* a missing or malformed scene is bad input */
         fprintf(stderr, "%s\n", mcrt_scene_error(scene)); /* already "file:line:col: ..." */
         code = status == MCRT_ERR_NOMEM ? STATUS_FAIL : STATUS_USAGE;
-    } else if ((status = mcrt_scene_export_pov(scene, output)) != MCRT_OK) {
-        fprintf(stderr, "mcrt: %s: %s\n", scene_path, mcrt_scene_error(scene));
-        code = status == MCRT_ERR_NOMEM || status == MCRT_ERR_IO ? STATUS_FAIL : STATUS_USAGE;
-    } else
+    } else {
+        fputs(mcrt_scene_warnings(scene), stderr);
         code = STATUS_OK;
+        if ((status = mcrt_scene_export_pov(scene, output)) != MCRT_OK) {
+            fprintf(stderr, "mcrt: %s: %s\n", scene_path, mcrt_scene_error(scene));
+            code = status == MCRT_ERR_NOMEM || status == MCRT_ERR_IO ? STATUS_FAIL : STATUS_USAGE;
+        }
+    }
     mcrt_scene_free(scene);
     free(owned);
     return code;

@@ -4,6 +4,8 @@
 
 #include "core/alloc.h"
 #include "core/file.h"
+#include "scene/mtl.h"
+#include "scene/wavefront.h"
 
 #include <errno.h>
 #include <float.h>
@@ -41,56 +43,17 @@ struct corner {
 };
 
 struct reader {
+    struct wf_reader r;     /* where we are, for messages */
     const struct obj_mesh *m;
     struct scene *s;
     mc_diag *d;
-    const char *line_start; /* of the line being read, for columns */
-    int line;
     float nxf[9];           /* normal matrix: sign(det)·cofactor(A), scaled to max |entry| 1 */
     int mirror;             /* det(A) < 0 */
     struct vec3_array v, vn, vt; /* vt: (u, v, 0) */
+    struct mtl_library lib; /* the materials of the mtllib files read so far */
+    struct prim proto;      /* what the faces copy: the mesh's, with usemtl's material and Ke */
     struct obj_stats stats;
 };
-
-static int is_blank(int c) { return c == ' ' || c == '\t' || c == '\r'; }
-
-static const char *skip_blank(const char *p, const char *le)
-{
-    while (p < le && is_blank((unsigned char)*p))
-        p++;
-    return p;
-}
-
-static const char *token_end(const char *p, const char *le)
-{
-    while (p < le && !is_blank((unsigned char)*p))
-        p++;
-    return p;
-}
-
-/* Fail at the column of p on the current line: "path:line:col: what". */
-static mcrt_status fail_at(struct reader *r, const char *p, const char *fmt, ...) MC_PRINTF(3, 4);
-
-static mcrt_status fail_at(struct reader *r, const char *p, const char *fmt, ...)
-{
-    char what[400];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(what, sizeof what, fmt, ap);
-    va_end(ap);
-    return mc_fail(r->d, MCRT_ERR_PARSE, "%s:%d:%d: %s", r->m->path, r->line,
-                   (int)(p - r->line_start) + 1, what);
-}
-
-/* Copy the token [p, e) for a message: at most 40 bytes, bytes that are not printable ASCII as '?'. */
-static const char *show(const char *p, const char *e, char buf[48])
-{
-    size_t i, n = (size_t)(e - p) > 40 ? 40 : (size_t)(e - p);
-    for (i = 0; i < n; i++)
-        buf[i] = p[i] > 0x20 && p[i] < 0x7f ? p[i] : '?';
-    strcpy(buf + n, (size_t)(e - p) > n ? "..." : "");
-    return buf;
-}
 
 static mcrt_status nomem(struct reader *r)
 {
@@ -104,33 +67,20 @@ static mcrt_status read_vec3(struct reader *r, const char *kw, const char *p, co
                              int need, vec3 *out)
 {
     float x[3] = {0.0f, 0.0f, 0.0f};
-    int i, kwlen = (int)(token_end(kw, le) - kw);
-    char buf[48];
+    int i, kwlen = (int)(mc_wf_token_end(kw, le) - kw);
     for (i = 0; i < 3; i++) {
         const char *q;
-        char *endp = NULL;
-        double v = 0.0;
-        p = skip_blank(p, le);
+        double v;
+        mcrt_status st;
+        p = mc_wf_skip_blank(p, le);
         if (i >= need && (p == le || *p == '#'))
             break;
         if (p == le)
-            return fail_at(r, kw, "'%.*s' needs %d number%s, found %d", kwlen, kw, need,
-                           need == 1 ? "" : "s", i);
-        q = token_end(p, le);
-        if (q - p > 255) /* as in scene files; it also bounds the time strtod may take */
-            return fail_at(r, p, "number longer than 255 characters");
-        /* strtod skips leading white space, newlines included: never let it start on one. The
-         * buffer's final NUL stops it at the end of the file. */
-        errno = 0;
-        if (*p != '\f' && *p != '\v')
-            v = strtod(p, &endp);
-        if (endp != q)
-            return fail_at(r, p, "malformed number '%s'", show(p, q, buf));
-        if (!isfinite(v) && errno != ERANGE)
-            return fail_at(r, p, "'%s' is not a finite number", show(p, q, buf));
-        if (!isfinite(v) || fabs(v) > FLT_MAX)
-            return fail_at(r, p, "number '%s' is too large (the largest is about 3.4e38)",
-                           show(p, q, buf));
+            return mc_wf_fail(&r->r, kw, "'%.*s' needs %d number%s, found %d", kwlen, kw, need,
+                              need == 1 ? "" : "s", i);
+        q = mc_wf_token_end(p, le);
+        if ((st = mc_wf_number(&r->r, p, q, &v)))
+            return st;
         x[i] = (float)v;
         p = q;
     }
@@ -152,7 +102,7 @@ static mcrt_status read_vertex(struct reader *r, const char *kw, const char *le)
         return st;
     p = xform_point(r->m->xform, p);
     if (!v3_is_finite(p))
-        return fail_at(r, kw, "vertex is not finite after the mesh transform");
+        return mc_wf_fail(&r->r, kw, "vertex is not finite after the mesh transform");
     return vec3_push(&r->v, p) ? nomem(r) : MCRT_OK;
 }
 
@@ -208,9 +158,9 @@ static mcrt_status resolve(struct reader *r, const char *at, long long idx, size
 {
     long long n = (long long)count;
     if (idx == 0)
-        return fail_at(r, at, "%s index 0 is invalid (OBJ indices start at 1)", what);
+        return mc_wf_fail(&r->r, at, "%s index 0 is invalid (OBJ indices start at 1)", what);
     if (idx > n || idx < -n)
-        return fail_at(r, at, "%s index %lld out of range (the file has %zu %s so far)", what, idx,
+        return mc_wf_fail(&r->r, at, "%s index %lld out of range (the file has %zu %s so far)", what, idx,
                        count, count == 1 ? one : many);
     *out = (size_t)(idx > 0 ? idx - 1 : n + idx);
     return MCRT_OK;
@@ -239,8 +189,8 @@ static mcrt_status read_corner(struct reader *r, const char *p, const char *e, s
         }
     }
     if (q != e)
-        return fail_at(r, p, "malformed face vertex '%s' (expected v, v/vt, v//vn or v/vt/vn)",
-                       show(p, e, buf));
+        return mc_wf_fail(&r->r, p, "malformed face vertex '%s' (expected v, v/vt, v//vn or v/vt/vn)",
+                       mc_wf_show(p, e, buf));
     st = resolve(r, p, iv, r->v.n, "face", "vertex", "vertices", &c->v);
     c->uv = c->normal = -1;
     if (!st && has_t) {
@@ -262,7 +212,7 @@ static mcrt_status read_corner(struct reader *r, const char *p, const char *e, s
 static mcrt_status add_triangle(struct reader *r, struct corner a, struct corner b, struct corner c,
                                 int smooth, int textured)
 {
-    struct prim t = r->m->proto;
+    struct prim t = r->proto;
     if (r->mirror) {
         struct corner tmp = b;
         b = c;
@@ -308,8 +258,8 @@ static mcrt_status read_face(struct reader *r, const char *kw, const char *le)
     mcrt_status st;
     for (pass = 0; pass < 2; pass++) {
         /* A '#' ends the corners: some exporters put comments after them. */
-        for (p = skip_blank(kw + 1, le); p < le && *p != '#'; p = skip_blank(q, le)) {
-            q = token_end(p, le);
+        for (p = mc_wf_skip_blank(kw + 1, le); p < le && *p != '#'; p = mc_wf_skip_blank(q, le)) {
+            q = mc_wf_token_end(p, le);
             st = read_corner(r, p, q, &c);
             if (st)
                 return st;
@@ -327,21 +277,85 @@ static mcrt_status read_face(struct reader *r, const char *kw, const char *le)
             n++;
         }
         if (pass == 0 && n < 3)
-            return fail_at(r, kw, "a face needs at least 3 vertices, found %d", n);
+            return mc_wf_fail(&r->r, kw, "a face needs at least 3 vertices, found %d", n);
         n = 0;
     }
     return MCRT_OK;
 }
 
-static mcrt_status read_line(struct reader *r, const char *p, const char *le)
+/* The folder of the OBJ file, with its final '/', joined to name [p, q): where an mtllib is. */
+static char *beside(const char *obj, const char *p, const char *q)
 {
-    const char *q, *s;
+    const char *slash = strrchr(obj, '/');
+    size_t nd = slash ? (size_t)(slash + 1 - obj) : 0, n = (size_t)(q - p);
+    char *path = mc_malloc(nd + n + 1);
+    if (path) {
+        memcpy(path, obj, nd);
+        memcpy(path + nd, p, n);
+        path[nd + n] = '\0';
+    }
+    return path;
+}
+
+/* mtllib FILE...: each a library of materials, relative to the OBJ file's folder. */
+static mcrt_status read_mtllib(struct reader *r, const char *kw, const char *le)
+{
+    const char *p, *q;
+    mcrt_status st = MCRT_OK;
+    int files = 0;
+    for (p = mc_wf_skip_blank(kw + 6, le); p < le && *p != '#' && !st; p = mc_wf_skip_blank(q, le)) {
+        char origin[600], *path;
+        q = mc_wf_token_end(p, le);
+        snprintf(origin, sizeof origin, "%s:%d:%d", r->m->path, r->r.line,
+                 (int)(p - r->r.line_start) + 1);
+        if (!(path = beside(r->m->path, p, q)))
+            return nomem(r);
+        st = mc_mtl_load(&r->lib, path, origin, r->s, r->d);
+        free(path);
+        files++;
+    }
+    if (!st && !files)
+        st = mc_wf_fail(&r->r, kw, "'mtllib' needs a file name");
+    return st;
+}
+
+/* usemtl NAME: the faces that follow take material NAME of the libraries read, and its Ke unless
+ * the scene gave the mesh an emission. The name is read as newmtl's (mc_wf_name_end). A material enters the scene when a face first uses it. */
+static mcrt_status read_usemtl(struct reader *r, const char *kw, const char *le)
+{
+    const char *p = mc_wf_skip_blank(kw + 6, le), *q = mc_wf_name_end(p, le);
+    struct mtl_entry *e;
+    int i;
+    if (q == p)
+        return mc_wf_fail(&r->r, kw, "'usemtl' needs a material name");
+    if ((i = mc_mtl_find(&r->lib, p, (size_t)(q - p))) < 0) {
+        char buf[48];
+        if (r->lib.npaths == 0)
+            return mc_wf_fail(&r->r, p, "unknown material '%s' (no 'mtllib' before it)",
+                              mc_wf_show(p, q, buf));
+        return mc_wf_fail(&r->r, p, "unknown material '%s' (not in '%s'%s)", mc_wf_show(p, q, buf),
+                          r->lib.paths[0], r->lib.npaths > 1 ? " and the other mtllib files" : "");
+    }
+    e = &r->lib.e[i];
+    if (e->scene_index < 0 && (e->scene_index = mc_scene_add_material(r->s, &e->m)) < 0)
+        return nomem(r);
+    r->proto.material = e->scene_index;
+    if (r->m->mtl_emit)
+        r->proto.emit = e->emit;
+    return MCRT_OK;
+}
+
+static mcrt_status read_line(void *user, const char *p, const char *le)
+{
+    struct reader *r = user;
+    const char *q;
     char buf[48];
     size_t n;
-    p = skip_blank(p, le);
+    mcrt_status st;
+    p = mc_wf_skip_blank(p, le);
     if (p == le || *p == '#')
         return MCRT_OK;
-    q = token_end(p, le);
+    q = mc_wf_token_end(p, le);
     n = (size_t)(q - p);
     if (n == 1 && p[0] == 'v')
         return read_vertex(r, p, le);
@@ -351,14 +365,17 @@ static mcrt_status read_line(struct reader *r, const char *p, const char *le)
         return read_uv(r, p, le);
     if (n == 1 && p[0] == 'f')
         return read_face(r, p, le);
-    /* Every other statement (o, g, s, usemtl, mtllib, l, p, curves...) is ignored, but only if it
+    if (r->m->mtl && n == 6 && !memcmp(p, "mtllib", 6))
+        return read_mtllib(r, p, le);
+    if (r->m->mtl && n == 6 && !memcmp(p, "usemtl", 6))
+        return read_usemtl(r, p, le);
+    /* Every other statement (o, g, s, l, p, curves...) is ignored, but only if it
      * looks like one: a keyword of printable ASCII starting with a letter. Anything else means
      * the file is not OBJ text. */
-    for (s = p; s < q; s++)
-        if (*s <= 0x20 || *s >= 0x7f)
-            return fail_at(r, s, "unexpected byte 0x%02x", (unsigned char)*s);
+    if ((st = mc_wf_check_keyword(&r->r, p, q)))
+        return st;
     if (!((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z')))
-        return fail_at(r, p, "expected an OBJ statement (v, vn, f, ...), found '%s'", show(p, q, buf));
+        return mc_wf_fail(&r->r, p, "expected an OBJ statement (v, vn, f, ...), found '%s'", mc_wf_show(p, q, buf));
     return MCRT_OK;
 }
 
@@ -389,42 +406,6 @@ static void normal_matrix(struct reader *r)
         r->nxf[i] = big > 0.0 ? (float)((r->mirror ? -c[i] : c[i]) / big) : 0.0f;
 }
 
-/* Line and column of byte z in buf, for a message about it. */
-static void locate(struct reader *r, const char *buf, const char *z)
-{
-    const char *p;
-    r->line = 1;
-    r->line_start = buf;
-    for (p = buf; p < z; p++)
-        if (*p == '\n') {
-            r->line++;
-            r->line_start = p + 1;
-        }
-}
-
-static mcrt_status read_lines(struct reader *r, const char *buf, size_t len)
-{
-    const char *p = buf, *end = buf + len, *z = memchr(buf, '\0', len);
-    mcrt_status st = MCRT_OK;
-    if (z) {
-        locate(r, buf, z);
-        return fail_at(r, z, "unexpected byte 0x00 (an OBJ file is text)");
-    }
-    if (len >= 3 && memcmp(p, "\xef\xbb\xbf", 3) == 0)
-        p += 3; /* a UTF-8 byte order mark */
-    r->line = 0;
-    while (p < end && !st) {
-        const char *le = memchr(p, '\n', (size_t)(end - p));
-        if (!le)
-            le = end;
-        r->line++;
-        r->line_start = p;
-        st = read_line(r, p, le);
-        p = le + 1;
-    }
-    return st;
-}
-
 mcrt_status mc_obj_load(struct scene *s, const struct obj_mesh *m, struct obj_stats *stats,
                         mc_diag *d)
 {
@@ -433,6 +414,10 @@ mcrt_status mc_obj_load(struct scene *s, const struct obj_mesh *m, struct obj_st
     size_t len = 0;
     mcrt_status st;
     memset(&r, 0, sizeof r);
+    r.r.path = m->path;
+    r.r.kind = "an OBJ file";
+    r.r.d = d;
+    r.proto = m->proto;
     r.m = m;
     r.s = s;
     r.d = d;
@@ -440,8 +425,9 @@ mcrt_status mc_obj_load(struct scene *s, const struct obj_mesh *m, struct obj_st
     st = mc_read_file(m->path, MC_OBJ_MAX_BYTES, m->origin, &buf, &len, d);
     if (st)
         return st;
-    st = read_lines(&r, buf, len);
+    st = mc_wf_lines(&r.r, buf, len, read_line, &r);
     free(buf);
+    mc_mtl_free(&r.lib);
     free(r.v.v);
     free(r.vn.v);
     free(r.vt.v);

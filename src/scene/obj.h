@@ -1,6 +1,7 @@
 /* obj.h: Wavefront OBJ triangle meshes loaded into the scene as triangle primitives.
  * Reads v, vn, vt and f (forms v, v/vt, v//vn, v/vt/vn; negative indices count back from the latest
- * element; polygons become triangle fans) and ignores every other statement. */
+ * element; polygons become triangle fans), mtllib and usemtl (mtl.h) when the mesh takes its
+ * materials from them, and ignores every other statement. */
 #ifndef MCRT_OBJ_H
 #define MCRT_OBJ_H
 
@@ -18,6 +19,9 @@ struct obj_mesh {
                          * file as a whole (cannot open, too large, no faces) */
     float xform[12];    /* object to world, row-major 3x4 affine map: x' = m[0]x + m[1]y + m[2]z + m[3] */
     struct prim proto;  /* material, flags and emit copied to every triangle */
+    int mtl;            /* nonzero: mtllib and usemtl give the faces after a usemtl its material
+                         * (else they are ignored, and every face takes proto's) */
+    int mtl_emit;       /* nonzero (with mtl): and its Ke as their emit */
 };
 
 /* What a load produced. */

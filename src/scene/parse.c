@@ -131,9 +131,9 @@ struct parser {
     struct texref *texrefs;
     size_t ntexrefs, cap_texrefs;
     struct token *texdefs;       /* name token of each texture this file defined, in order */
-    size_t ntexdefs, cap_texdefs, first_texture;
+    size_t ntexdefs, cap_texdefs;
     struct token *defs;          /* name token of each material this file defined, in order */
-    size_t ndefs, cap_defs, first_material;
+    size_t ndefs, cap_defs;
     struct block_kinds kinds;
     struct token seen[MAX_BLOCK_KINDS]; /* first block of each unique kind (line 0: none yet) */
 };
@@ -745,26 +745,27 @@ static void kind_list(char *buf, size_t size, unsigned keys, int quoted, const c
 }
 
 /* A named block's name into name[size) (a material's or a texture's, as b's kind says), which
- * must be new: find looks the name up in the scene, defs[i − first] is the name token of this
- * file's definition i. */
+ * must be new: find looks the name up in the scene, defs[0, ndefs) are the name tokens of this
+ * file's definitions. They are searched by name, not by the scene's index: the materials and
+ * textures meshes take from MTL files come in between, under names no word spells (mtl.h). */
 static void new_name(struct parser *p, const struct block *b, char *name, size_t size,
                      int (*find)(const struct scene *, const char *), const struct token *defs,
-                     size_t first)
+                     size_t ndefs)
 {
     const struct token *nm = &b->name;
     const char *what = b->kind->name;
-    int existing;
+    size_t i;
     if (nm->len >= size)
         fail(p, nm, "%s name longer than %d characters", what, (int)size - 1);
     memcpy(name, nm->text, nm->len);
     name[nm->len] = '\0';
-    existing = find(p->s, name);
-    if (existing >= (int)first) {
-        const struct token *d = &defs[(size_t)existing - first];
-        fail(p, nm, "duplicate %s '%s' (first defined at %d:%d)", what, name, d->line, d->col);
-    }
-    if (existing >= 0)
-        fail(p, nm, "duplicate %s '%s'", what, name);
+    if (find(p->s, name) < 0)
+        return;
+    for (i = 0; i < ndefs; i++)
+        if (defs[i].len == nm->len && !memcmp(defs[i].text, nm->text, nm->len))
+            fail(p, nm, "duplicate %s '%s' (first defined at %d:%d)", what, name, defs[i].line,
+                 defs[i].col);
+    fail(p, nm, "duplicate %s '%s'", what, name);
 }
 
 /* The one of b's first n keys (a kind of material or texture) that is given, or -1 when none is;
@@ -799,7 +800,7 @@ static void finish_material(struct parser *p, struct block *b)
     unsigned given = 0;
     int i, first, idx;
     memset(&m, 0, sizeof m);
-    new_name(p, b, m.name, sizeof m.name, mc_scene_find_material, p->defs, p->first_material);
+    new_name(p, b, m.name, sizeof m.name, mc_scene_find_material, p->defs, p->ndefs);
     if ((first = one_kind(p, b, MC_MATERIAL_COUNT, m.name)) < 0) {
         kind_list(kinds, sizeof kinds, 0, 1, " or ");
         fail(p, nm, "material '%s' needs one of %s", m.name, kinds);
@@ -880,7 +881,7 @@ static void finish_texture(struct parser *p, struct block *b)
     struct texture t;
     int first;
     memset(&t, 0, sizeof t);
-    new_name(p, b, t.name, sizeof t.name, mc_scene_find_texture, p->texdefs, p->first_texture);
+    new_name(p, b, t.name, sizeof t.name, mc_scene_find_texture, p->texdefs, p->ntexdefs);
     if ((first = one_kind(p, b, TEXTURE_KIND_COUNT, t.name)) < 0)
         fail(p, nm, "texture '%s' needs 'image \"FILE\"' or 'checker A B'", t.name);
     t.kind = (enum texture_kind)first;
@@ -1083,6 +1084,9 @@ static void finish_mesh(struct parser *p, struct block *b)
     for (i = 0; i < 12; i++)
         m.xform[i] = (float)b->xf[i];
     m.proto = shape_proto(b);
+    /* The OBJ's own materials and emission unless the scene gives them (man/mcrt.5). */
+    m.mtl = !b->v[SHAPE_MATERIAL].set;
+    m.mtl_emit = !b->v[SHAPE_EMIT].set;
     st = mc_obj_load(p->s, &m, NULL, p->d);
     free((char *)m.path);
     if (st)
@@ -1371,8 +1375,6 @@ mcrt_status mc_scene_parse(struct scene *s, const char *text, size_t len, const 
     p.name = name;
     p.base_dir = base_dir;
     p.d = d;
-    p.first_material = s->material_count;
-    p.first_texture = s->texture_count;
     block_kinds_make(&p.kinds);
     mc_lex_init(&p.lx, text, len, name, d);
     st = run(&p);

@@ -1,6 +1,8 @@
 /* scene.c: the scene container: defaults, growable arrays, lookup by name, and release. */
 #include "scene/scene.h"
 
+#include <stdarg.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -59,6 +61,7 @@ void mc_scene_free(struct scene *s)
     }
     free(s->images);
     free(s->textures);
+    free(s->warnings);
     if (s->envmap)
         mc_envmap_free(s->envmap);
     free(s->envmap);
@@ -81,6 +84,29 @@ static int push(void **array, size_t *count, size_t *cap, size_t elem, const voi
     }
     memcpy((char *)*array + *count * elem, value, elem);
     return (int)(*count)++;
+}
+
+int mc_scene_warn(struct scene *s, const char *fmt, ...)
+{
+    char line[640], *w;
+    size_t n;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(line, sizeof line - 1, fmt, ap);
+    va_end(ap);
+    n = strlen(line);
+    line[n++] = '\n';
+    line[n] = '\0';
+    /* Each warning once: a library that several meshes read warns once in all. */
+    for (w = s->warnings; w && w < s->warnings + s->warnings_len; w = strchr(w, '\n') + 1)
+        if (!strncmp(w, line, n))
+            return 0;
+    if (!(w = mc_realloc(s->warnings, s->warnings_len + n + 1)))
+        return -1;
+    memcpy(w + s->warnings_len, line, n + 1);
+    s->warnings = w;
+    s->warnings_len += n;
+    return 0;
 }
 
 int mc_scene_add_material(struct scene *s, const struct material *m)

@@ -83,6 +83,10 @@ struct scene {
                                         environment (given or the default sky) last */
     size_t light_count, light_cap;
 
+    char *warnings;                  /* about the input, one line each ending in '\n' ("file:
+                                        line:col: warning: what"); NULL when none (owned) */
+    size_t warnings_len;
+
     struct scene_image *images;
     size_t image_count, image_cap;
     struct texture *textures;        /* what materials' texture fields index (minus 1) */
@@ -130,6 +134,9 @@ int mc_scene_image_texture(struct scene *s, const char *name, const char *path, 
 int mc_scene_find_texture(const struct scene *s, const char *name);
 /* Give image i its pixels: rgb (w·h·3 floats, malloc'd) becomes the scene's. */
 void mc_scene_set_image(struct scene *s, size_t i, float *rgb, int w, int h);
+/* Add the warning the format makes ("file:line:col: warning: what", without a newline), unless the
+ * scene has it already; 0, or -1 when out of memory. */
+int mc_scene_warn(struct scene *s, const char *fmt, ...) MC_PRINTF(2, 3);
 /* Index of the material with this name, or -1. */
 int mc_scene_find_material(const struct scene *s, const char *name);
 

@@ -3,11 +3,9 @@
  * (BVH, light table of its emitting triangles) so that garbage geometry reaches the builder too.
  * Built by `make fuzz` with clang -fsanitize=fuzzer; tests/fuzz/replay.c runs it on the corpus. */
 #include <stdint.h>
-#include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
+#include "fuzz_file.h"
 #include "scene/obj.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
@@ -20,19 +18,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     struct scene s;
     struct obj_mesh m;
     mc_diag d;
-    FILE *f;
-    if (!path[0]) {
-        const char *dir = getenv("TMPDIR");
-        snprintf(path, sizeof path, "%s/mcrt-fuzz-obj-%ld.obj", dir && dir[0] ? dir : "/tmp", (long)getpid());
-    }
-    f = fopen(path, "wb");
-    if (!f)
+    if (fuzz_to_file(path, "mcrt-fuzz-obj", "obj", data, size))
         return 0;
-    if (size && fwrite(data, 1, size, f) != size) {
-        fclose(f);
-        return 0;
-    }
-    fclose(f);
     mc_scene_init(&s);
     memset(&m, 0, sizeof m);
     m.path = path;

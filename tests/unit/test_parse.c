@@ -324,6 +324,8 @@ static void test_mesh_faces(void)
     struct scene s;
     mc_diag d;
     char path[128];
+    tmp_path(path, sizeof path, "x.mtl");
+    write_file(path, "newmtl red\nKd 0.5\n");
     tmp_path(path, sizeof path, "faces.obj");
     write_file(path,
                "# header\r\nmtllib x.mtl\r\no thing\r\ng group\r\ns 1\r\nusemtl red\r\n"

@@ -1,0 +1,67 @@
+/* mtl.h: Wavefront MTL material libraries (the files an OBJ's mtllib names), read into mcrt's
+ * materials. The mapping, for users in man/mcrt.5 ("OBJ materials"):
+ *   illum 4, 6, 7 or 9, or d < 1 (Tr > 0)   glass of index Ni (1.5), tint Tf (1), smooth
+ *   else Ks > 0 and illum not 0 or 1         Kd black: metal of reflectance Ks; else plastic of
+ *                                            albedo Kd, coat index Ni when above 1 (else 1.5);
+ *                                            both of GGX α from Ns (mtl.c)
+ *   else                                     diffuse of albedo Kd
+ * and Ke is the emitted radiance. Kd, Ks and Ke are 0 when absent (as tinyobjloader reads
+ * them), so a material of Ke alone is a black emitter. */
+#ifndef MCRT_MTL_H
+#define MCRT_MTL_H
+
+#include <stddef.h>
+
+#include "bsdf/material.h"
+#include "core/diag.h"
+
+struct scene;
+
+/* The statements of MTL, one line each: X(name, how). how is READ (it sets the material), QUIET
+ * (ignored: it means nothing to a path tracer) or WARN (ignored, and the first in each file is
+ * reported as a warning with the reason mtl.c gives). Any other statement is an error. */
+#define MC_MTL_STATEMENTS(X)                                                                    \
+    X(newmtl, READ) X(Kd, READ) X(Ks, READ) X(Ke, READ) X(Ns, READ) X(Ni, READ) X(d, READ)      \
+    X(Tr, READ) X(Tf, READ) X(illum, READ)                                                      \
+    X(Ka, QUIET) X(map_Ka, QUIET)                                                               \
+    X(map_Kd, WARN) X(map_Ks, WARN) X(map_Ns, WARN) X(map_d, WARN) X(map_Ke, WARN)              \
+    X(map_bump, WARN) X(bump, WARN) X(disp, WARN) X(decal, WARN) X(norm, WARN) X(refl, WARN)    \
+    X(sharpness, WARN) X(map_aat, WARN) X(Pr, WARN) X(Pm, WARN) X(Ps, WARN) X(Pc, WARN)         \
+    X(Pcr, WARN) X(aniso, WARN) X(anisor, WARN) X(map_Pr, WARN) X(map_Pm, WARN) X(map_Ps, WARN)
+
+#define MC_MTL_ENUM(name, how) MTL_##name,
+enum mtl_statement { MC_MTL_STATEMENTS(MC_MTL_ENUM) MTL_STATEMENT_COUNT };
+#undef MC_MTL_ENUM
+/* Their keywords, NULL at [MTL_STATEMENT_COUNT] (for the manual's check, tests/tools/words). */
+extern const char *const mc_mtl_statement_names[MTL_STATEMENT_COUNT + 1];
+
+/* One material of a library. */
+struct mtl_entry {
+    char name[64];             /* as newmtl gives it */
+    size_t file;               /* the library file that defines it: mtl_library.paths[file] */
+    int line, col;             /* of its name after newmtl */
+    struct material m;         /* named "FILE:NAME", which no scene word can name */
+    vec3 emit;                 /* Ke */
+    int scene_index;           /* the scene's material, -1 until a face uses it (obj.c) */
+};
+
+/* The materials of every library an OBJ file has named so far. */
+struct mtl_library {
+    struct mtl_entry *e;
+    size_t n, cap;
+    char **paths;              /* the files read, as opened */
+    size_t npaths;
+};
+
+/* Read the MTL file at path into lib. Messages: "path:line:col: what" for malformed contents,
+ * including a material defined twice in the files read (MCRT_ERR_PARSE), "origin: cannot
+ * open/read 'path': reason" (MCRT_ERR_IO), MCRT_ERR_NOMEM. Warnings about ignored statements go
+ * to warn (mc_scene_warn). On failure lib keeps what it held and what was read, for
+ * mc_mtl_free. */
+mcrt_status mc_mtl_load(struct mtl_library *lib, const char *path, const char *origin,
+                        struct scene *warn, mc_diag *d);
+/* The entry named [name, name + len), or -1. */
+int mc_mtl_find(const struct mtl_library *lib, const char *name, size_t len);
+void mc_mtl_free(struct mtl_library *lib);
+
+#endif

@@ -1,0 +1,272 @@
+/* test_mtl.c: OBJ materials. The MTL mapping (man/mcrt.5 "OBJ materials") on one material of
+ * each kind, the Ns -> alpha formula, the scene's material and emit overriding the file's, the
+ * warnings (once each), and two renders with a closed form: a closed cube of black walls emitting
+ * Ke, seen from inside, is Ke in every pixel exactly; walls of albedo rho emitting Ke give
+ * Ke / (1 - rho) everywhere (the enclosure's radiance L = Ke + rho L), within the noise. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "render_util.h"
+#include "scene/mtl.h"
+#include "scene/scene.h"
+#include "t.h"
+
+static char tmpdir[64];
+
+static void write_in_tmp(const char *file, const char *text)
+{
+    char path[160];
+    FILE *f;
+    snprintf(path, sizeof path, "%s/%s", tmpdir, file);
+    if (!(f = fopen(path, "wb"))) {
+        printf("FAIL cannot write %s\n", path);
+        exit(1);
+    }
+    fputs(text, f);
+    fclose(f);
+}
+
+static const struct mtl_entry *entry(const struct mtl_library *lib, const char *name)
+{
+    int i = mc_mtl_find(lib, name, strlen(name));
+    T_CHECK(i >= 0, "no material '%s'", name);
+    return i >= 0 ? &lib->e[i] : NULL;
+}
+
+static int near3(vec3 a, float x, float y, float z)
+{
+    return fabsf(a.x - x) < 1e-6f && fabsf(a.y - y) < 1e-6f && fabsf(a.z - z) < 1e-6f;
+}
+
+static void test_mapping(void)
+{
+    struct mtl_library lib;
+    struct scene s;
+    mc_diag d;
+    char path[160];
+    const struct mtl_entry *e;
+    write_in_tmp("kinds.mtl",
+                 "# one of each kind\n"
+                 "newmtl matte\nKa 0.2 0.2 0.2\nKd 0.5 0.25 0.125\nKs 0.5\nillum 1\n"
+                 "newmtl shiny\nKd 0.5\nKs 0.04\nNs 98\nNi 1.0\nillum 2\n"
+                 "newmtl coat\nKd 0.3\nKs 0.5\nNi 1.6\n"
+                 "newmtl copper  # name ends before the comment\n"
+                 "Kd 0 0 0\nKs 0.9 0.6 0.3\nillum 3\n"
+                 "newmtl water\nKd 0.5\nNi 1.33\nTf 0.9 1 1\nillum 7\n"
+                 "newmtl veil\nd 0.5\n"
+                 "newmtl lamp\nKe 2 3 4\n"
+                 "\tnewmtl two words \n Kd 1\n");
+    snprintf(path, sizeof path, "%s/kinds.mtl", tmpdir);
+    memset(&lib, 0, sizeof lib);
+    mc_scene_init(&s);
+    T_CHECK(mc_mtl_load(&lib, path, "t.obj:1:8", &s, &d) == MCRT_OK, "%s", d.msg);
+    T_CHECK(lib.n == 8, "%zu materials", lib.n);
+    T_CHECK(s.warnings == NULL, "Ka is ignored quietly: %s", s.warnings);
+    if (lib.n == 8) {
+        e = entry(&lib, "matte");
+        T_CHECK(e && e->m.kind == MC_MATERIAL_KIND(diffuse) && near3(e->m.color, 0.5f, 0.25f, 0.125f),
+                "illum 1 is diffuse Kd, whatever Ks");
+        e = entry(&lib, "shiny");
+        /* Ns 98: alpha = sqrt(2 / (98 + 2)) = sqrt(0.02); Ni 1 means the default coat. */
+        T_CHECK(e && e->m.kind == MC_MATERIAL_KIND(plastic) && near3(e->m.color, 0.5f, 0.5f, 0.5f)
+                    && fabsf(e->m.alpha - sqrtf(0.02f)) < 1e-6f && e->m.ior == 1.5f,
+                "Kd and Ks: plastic, alpha %g ior %g", e ? (double)e->m.alpha : 0.0,
+                e ? (double)e->m.ior : 0.0);
+        e = entry(&lib, "coat");
+        T_CHECK(e && e->m.kind == MC_MATERIAL_KIND(plastic) && e->m.ior == 1.6f && e->m.alpha == 0.0f,
+                "Ni above 1 is the coat's index; no Ns is smooth");
+        e = entry(&lib, "copper");
+        T_CHECK(e && e->m.kind == MC_MATERIAL_KIND(metal) && near3(e->m.color, 0.9f, 0.6f, 0.3f)
+                    && e->m.eta.x > 0.0f && e->m.k.x > 0.0f,
+                "black Kd and Ks: metal of reflectance Ks, with eta and k derived");
+        e = entry(&lib, "water");
+        T_CHECK(e && e->m.kind == MC_MATERIAL_KIND(glass) && fabsf(e->m.ior - 1.33f) < 1e-6f
+                    && near3(e->m.color, 0.9f, 1.0f, 1.0f),
+                "illum 7: glass of index Ni, tint Tf");
+        e = entry(&lib, "veil");
+        T_CHECK(e && e->m.kind == MC_MATERIAL_KIND(glass) && e->m.ior == 1.5f
+                    && near3(e->m.color, 1, 1, 1),
+                "d below 1: glass");
+        e = entry(&lib, "lamp");
+        T_CHECK(e && e->m.kind == MC_MATERIAL_KIND(diffuse) && near3(e->m.color, 0, 0, 0)
+                    && near3(e->emit, 2, 3, 4),
+                "Ke alone: a black emitter");
+        e = entry(&lib, "two words");
+        T_CHECK(e && near3(e->m.color, 1, 1, 1) && !strcmp(e->m.name, "kinds.mtl:two words"),
+                "a name with a blank; the scene's name '%s'", e ? e->m.name : "");
+    }
+    mc_mtl_free(&lib);
+    mc_scene_free(&s);
+}
+
+/* An OBJ with a material per half and the first library's statements that mcrt ignores. */
+static void write_two_halves(void)
+{
+    write_in_tmp("halves.mtl", "newmtl red\nKd 0.8 0.1 0.1\nbump b.png\nbump c.png\nmap_Ks s.png\n"
+                               "newmtl glow\nKd 0\nKe 5\n");
+    write_in_tmp("halves.obj", "mtllib halves.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"
+                               "usemtl red\nf 1 2 3\nusemtl glow\nf 1 2 3\nusemtl red\nf 1 2 3\n");
+}
+
+static mcrt_scene *load(const char *text)
+{
+    mcrt_scene *s = mcrt_scene_new();
+    char *full = malloc(strlen(text) + 4 * sizeof tmpdir);
+    const char *p;
+    char *o = full;
+    /* "@" stands for the folder of the test's files. */
+    for (p = text; *p; p++)
+        o = *p == '@' ? o + sprintf(o, "%s", tmpdir) : (*o = *p, o + 1);
+    *o = '\0';
+    if (s && mcrt_scene_load_string(s, full, strlen(full), "t.mcrt") != MCRT_OK) {
+        printf("FAIL load: %s\n", mcrt_scene_error(s));
+        t_failed++;
+        mcrt_scene_free(s);
+        s = NULL;
+    }
+    free(full);
+    return s;
+}
+
+static void test_faces_and_overrides(void)
+{
+    static const char warned[] =
+        "/halves.mtl:3:1: warning: 'bump' is ignored: mcrt has no bump, normal or displacement maps "
+        "(later ones in this file are not reported)\n";
+    mcrt_scene *s;
+    const char *w;
+    write_two_halves();
+    /* Two meshes of one file: each reads the library, and its warnings are said once. */
+    s = load("mesh { file \"@/halves.obj\" }\nmesh { file \"@/halves.obj\" }");
+    if (s) {
+        const char *second;
+        w = mcrt_scene_warnings(s);
+        second = strchr(w, '\n');
+        T_CHECK(strstr(w, warned) == w + strlen(tmpdir) && second && strstr(second + 1, "'map_Ks'")
+                    && strchr(second + 1, '\n') && !strchr(strchr(second + 1, '\n') + 1, '\n'),
+                "two warnings, once each:\n%s", w);
+        mcrt_scene_free(s);
+    }
+    /* The faces: before any usemtl the mesh's own (default) material; then each usemtl's, with
+     * its Ke. Through the internal parser, to see the primitives. */
+    {
+        struct scene sc;
+        mc_diag d;
+        char text[256];
+        int n = snprintf(text, sizeof text, "mesh { file \"%s/halves.obj\" }\n"
+                                            "mesh { file \"%s/halves.obj\" emit 1 }\n"
+                                            "mesh { file \"%s/none.obj\" material m }\n"
+                                            "material m { mirror 0.5 }\n", tmpdir, tmpdir, tmpdir);
+        write_in_tmp("none.obj", "mtllib missing.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl x\nf 1 2 3\n");
+        mc_scene_init(&sc);
+        T_CHECK(mc_scene_parse(&sc, text, (size_t)n, "t.mcrt", NULL, &d) == MCRT_OK, "%s", d.msg);
+        if (sc.prim_count == 9) {
+            const struct prim *p = sc.prims;
+            const struct material *m = sc.materials;
+            T_CHECK(p[0].material == 0 && v3_is_zero(p[0].emit), "before usemtl: the mesh's own");
+            T_CHECK(!strcmp(m[p[1].material].name, "halves.mtl:red") && v3_is_zero(p[1].emit)
+                        && !strcmp(m[p[2].material].name, "halves.mtl:glow") && near3(p[2].emit, 5, 5, 5)
+                        && p[3].material == p[1].material,
+                    "usemtl: material and Ke, one scene material per MTL material");
+            T_CHECK(p[6].material == p[2].material + 2 && near3(p[6].emit, 1, 1, 1)
+                        && near3(p[5].emit, 1, 1, 1),
+                    "the scene's emit replaces Ke (the materials stay)");
+            T_CHECK(!strcmp(m[p[8].material].name, "m"),
+                    "the scene's material: the MTL files are not read");
+        } else {
+            T_CHECK(0, "%zu primitives", sc.prim_count);
+        }
+        mc_scene_free(&sc);
+    }
+}
+
+/* The inside of the cube [-1, 1]^3, every face's front side inward, all of material box. */
+static void write_box(const char *mtl)
+{
+    write_in_tmp("box.mtl", mtl);
+    write_in_tmp("box.obj", "mtllib box.mtl\n"
+                            "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\n"
+                            "v -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
+                            "usemtl box\n"
+                            "f 1 2 3 4\nf 5 8 7 6\nf 1 4 8 5\nf 2 6 7 3\nf 1 5 6 2\nf 4 3 7 8\n");
+}
+
+static float *render_box(int spp, int *w, int *h)
+{
+    char text[512];
+    struct t_render_opts o = {0, 2, 0, 7, NULL, NULL};
+    o.spp = spp;
+    snprintf(text, sizeof text,
+             "film { width 32 height 32 }\ncamera { eye 0.2 -0.3 0.1 look 1 0.5 -1 fov 100 }\n"
+             "mesh { file \"%s/box.obj\" }\n", tmpdir);
+    return t_render(text, &o, w, h, NULL);
+}
+
+static void test_emitting_box(void)
+{
+    int w = 0, h = 0;
+    size_t i, n;
+    float *px;
+    double sum = 0.0, sum2 = 0.0, mean, sd;
+    /* Black walls: the camera ray's first hit is all there is, exactly Ke. */
+    write_box("newmtl box\nKd 0\nKe 1.5 0.75 0.25\n");
+    px = render_box(4, &w, &h);
+    if (px) {
+        double worst = 0.0;
+        static const float ke[3] = {1.5f, 0.75f, 0.25f};
+        for (i = 0; i < (size_t)w * (size_t)h * 3; i++)
+            worst = fmax(worst, fabs(px[i] - ke[i % 3]) / ke[i % 3]);
+        T_CHECK(worst < 1e-6, "black emitting box: every pixel Ke, worst relative error %g", worst);
+        free(px);
+    } else {
+        T_CHECK(0, "the black box did not render");
+    }
+    /* Walls of albedo 0.5 emitting 1: L = 1 / (1 - 0.5) = 2 everywhere. Each pixel's estimate (the
+     * mean of its channels, which share their paths) is
+     * independent of the others', so their mean's standard error is their spread over sqrt(n);
+     * the mean must be within 4 of those (a false failure 6e-5 of the time). */
+    write_box("newmtl box\nKd 0.5\nKe 1\n");
+    px = render_box(16, &w, &h);
+    if (px) {
+        n = (size_t)w * (size_t)h;
+        for (i = 0; i < n; i++) {
+            double v = ((double)px[3 * i] + px[3 * i + 1] + px[3 * i + 2]) / 3.0;
+            sum += v;
+            sum2 += v * v;
+        }
+        mean = sum / (double)n;
+        sd = sqrt(fmax(sum2 / (double)n - mean * mean, 0.0) / (double)(n - 1));
+        T_CHECK(sd > 0.0 && fabs(mean - 2.0) < 4.0 * sd, "grey emitting box: mean %.5f, standard error %.5f",
+                mean, sd);
+        T_NOTE("grey emitting box: mean %.5f against 2, standard error %.5f", mean, sd);
+        free(px);
+    } else {
+        T_CHECK(0, "the grey box did not render");
+    }
+}
+
+int main(void)
+{
+    snprintf(tmpdir, sizeof tmpdir, "/tmp/mcrt_mtl_XXXXXX");
+    if (!mkdtemp(tmpdir)) {
+        printf("FAIL mkdtemp\n");
+        return 1;
+    }
+    test_mapping();
+    test_faces_and_overrides();
+    test_emitting_box();
+    {
+        static const char *const files[] = {"kinds.mtl", "halves.mtl", "halves.obj", "none.obj",
+                                            "box.mtl", "box.obj"};
+        char path[160];
+        size_t i;
+        for (i = 0; i < sizeof files / sizeof files[0]; i++) {
+            snprintf(path, sizeof path, "%s/%s", tmpdir, files[i]);
+            remove(path);
+        }
+        rmdir(tmpdir);
+    }
+    return t_done();
+}
