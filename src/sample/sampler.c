@@ -16,16 +16,23 @@ const char *const mc_sampler_names[SAMPLER_COUNT + 1] = {MC_SAMPLERS(MC_NAMES_EN
  * Number Generators"): hashing base + dim·γ gives independent keys for dimensions 0, 1, ... */
 #define GOLDEN_GAMMA 0x9e3779b97f4a7c15ULL
 
-uint32_t mc_permute(uint32_t i, uint32_t n, uint32_t key)
+/* The smallest 2^k - 1 >= n - 1: the domain of Kensler's hash, walked down to [0, n). */
+static uint32_t permute_mask(uint32_t n)
 {
     uint32_t w = n - 1;
-    if (n <= 1)
-        return 0;
     w |= w >> 1;
     w |= w >> 2;
     w |= w >> 4;
     w |= w >> 8;
     w |= w >> 16;
+    return w;
+}
+
+/* mc_permute with its mask w = permute_mask(n) given (the sampler computes it once a pixel). */
+static inline uint32_t permute(uint32_t i, uint32_t n, uint32_t w, uint32_t key)
+{
+    if (n <= 1)
+        return 0;
     /* Cycle-walking: the hash is a bijection on [0, w]; repeat until the value falls below n. */
     do {
         i ^= key;
@@ -47,8 +54,11 @@ uint32_t mc_permute(uint32_t i, uint32_t n, uint32_t key)
         i &= w;
         i ^= i >> 5;
     } while (i >= n);
-    return (i + key) % n;
+    /* n = w + 1 divides 2^32, so the remainder of the wrapped sum is its low bits. */
+    return w + 1 == n ? (i + key) & w : (i + key) % n;
 }
+
+uint32_t mc_permute(uint32_t i, uint32_t n, uint32_t key) { return permute(i, n, permute_mask(n), key); }
 
 void mc_sampler_grid(uint32_t spp, uint32_t *nx, uint32_t *ny)
 {
@@ -64,6 +74,17 @@ void mc_sampler_grid(uint32_t spp, uint32_t *nx, uint32_t *ny)
     }
 }
 
+/* k where n = 2^k <= 2^24, else -1. */
+static int log2_exact(uint32_t n)
+{
+    int k = 0;
+    if (n & (n - 1) || n > 1u << 24)
+        return -1;
+    while (n >> k > 1)
+        k++;
+    return k;
+}
+
 void mc_sampler_pixel(struct sampler *s, enum sampler_kind kind, uint64_t seed, int x, int y, int spp)
 {
     s->kind = kind;
@@ -72,6 +93,11 @@ void mc_sampler_pixel(struct sampler *s, enum sampler_kind kind, uint64_t seed, 
     s->scale[0] = 0x1p24 / s->spp;
     s->scale[1] = 0x1p24 / s->nx;
     s->scale[2] = 0x1p24 / s->ny;
+    s->shift[0] = log2_exact(s->spp);
+    s->shift[1] = log2_exact(s->nx);
+    s->shift[2] = log2_exact(s->ny);
+    s->mask[0] = permute_mask(s->spp);
+    s->mask[1] = permute_mask(s->nx * s->ny);
     s->pixel_key = mc_hash3(seed, (uint64_t)(uint32_t)x, (uint64_t)(uint32_t)y);
     s->dim_base = mc_hash64(s->pixel_key ^ DIM_SALT);
     mc_sampler_start(s, 0);
@@ -92,15 +118,15 @@ static uint64_t next_key(struct sampler *s, uint32_t n)
     return key;
 }
 
-/* The stratum (of n) that this sample takes in the dimension keyed by key: Kensler's permutation
+/* The stratum (of n, whose mc_permute mask is w) that this sample takes in the dimension keyed by key: Kensler's permutation
  * of the indices, rotated by an offset drawn from the key's other half. When n exceeds spp (a 2D
  * grid with spare cells) the samples leave some strata empty; the rotation makes each sample's
  * stratum uniform over all n (to within n·2^-32), which keeps the estimate unbiased whichever
  * strata are left out. */
-static uint32_t stratum(const struct sampler *s, uint32_t n, uint64_t key)
+static uint32_t stratum(const struct sampler *s, uint32_t n, uint32_t w, uint64_t key)
 {
     uint32_t offset = (uint32_t)(((key >> 32) * n) >> 32);
-    uint32_t k = mc_permute(s->index, n, (uint32_t)key) + offset;
+    uint32_t k = permute(s->index, n, w, (uint32_t)key) + offset;
     return k >= n ? k - n : k;
 }
 
@@ -109,9 +135,13 @@ static uint32_t stratum(const struct sampler *s, uint32_t n, uint64_t key)
  * across an edge (the tests are exact integer products, below 2^56). So the value lands in its
  * stratum exactly and is below 1; the grid points of a stratum are equally likely to within
  * n·2^-24. */
-static float in_stratum(uint32_t k, uint32_t n, double scale, uint32_t m)
+static float in_stratum(uint32_t k, uint32_t n, double scale, int shift, uint32_t m)
 {
-    uint64_t q = (uint64_t)(((double)k + (double)m * 0x1p-24) * scale);
+    uint64_t q;
+    /* n = 2^shift: that grid point exactly, k·2^(24-shift) + ⌊m/2^shift⌋, inside the stratum. */
+    if (shift >= 0)
+        return (float)((k << (24 - shift)) | (m >> shift)) * 0x1p-24f;
+    q = (uint64_t)(((double)k + (double)m * 0x1p-24) * scale);
     if (q * n < (uint64_t)k << 24)
         q++;
     else if (q * n >= (uint64_t)(k + 1) << 24)
@@ -138,9 +168,11 @@ float mc_sampler_1d(struct sampler *s)
     }
     key = next_key(s, 1);
     if (s->kind == SAMPLER_STRATIFIED)
-        return in_stratum(stratum(s, s->spp, key), s->spp, s->scale[0], jitter24(s));
+        return in_stratum(stratum(s, s->spp, s->mask[0], key), s->spp, s->scale[0], s->shift[0],
+                          jitter24(s));
     /* The sample's index in this dimension is a permutation of [0, spp), like a stratum. */
-    return fraction24(mc_sobol_scrambled(stratum(s, s->spp, key), 0, (uint32_t)scramble_seeds(key)));
+    return fraction24(mc_sobol_scrambled(stratum(s, s->spp, s->mask[0], key), 0,
+                                         (uint32_t)scramble_seeds(key)));
 }
 
 vec2 mc_sampler_2d(struct sampler *s)
@@ -155,11 +187,14 @@ vec2 mc_sampler_2d(struct sampler *s)
     }
     key = next_key(s, 2);
     if (s->kind == SAMPLER_STRATIFIED) {
-        k = stratum(s, s->nx * s->ny, key);
-        a = in_stratum(k % s->nx, s->nx, s->scale[1], jitter24(s));
-        return v2(a, in_stratum(k / s->nx, s->ny, s->scale[2], jitter24(s)));
+        uint32_t kx, ky;
+        k = stratum(s, s->nx * s->ny, s->mask[1], key);
+        kx = s->shift[1] >= 0 ? k & (s->nx - 1) : k % s->nx;
+        ky = s->shift[1] >= 0 ? k >> s->shift[1] : k / s->nx;
+        a = in_stratum(kx, s->nx, s->scale[1], s->shift[1], jitter24(s));
+        return v2(a, in_stratum(ky, s->ny, s->scale[2], s->shift[2], jitter24(s)));
     }
-    k = stratum(s, s->spp, key);
+    k = stratum(s, s->spp, s->mask[0], key);
     seeds = scramble_seeds(key);
     return v2(fraction24(mc_sobol_scrambled(k, 0, (uint32_t)seeds)),
               fraction24(mc_sobol_scrambled(k, 1, (uint32_t)(seeds >> 32))));
@@ -175,11 +210,11 @@ double mc_sampler_1d_double(struct sampler *s)
     }
     key = next_key(s, 1);
     if (s->kind == SAMPLER_STRATIFIED) {
-        d = ((double)stratum(s, s->spp, key) + pcg32_double(&s->rng)) / (double)s->spp;
+        d = ((double)stratum(s, s->spp, s->mask[0], key) + pcg32_double(&s->rng)) / (double)s->spp;
         return d < 1.0 ? d : 0x1.fffffffffffffp-1;
     }
     /* A 32-bit index leaves digits 33 and on of a Sobol point at 0; Owen's scramble carried to
      * those depths would make them independent uniform bits, which is what the stream supplies. */
-    v = mc_sobol_scrambled(stratum(s, s->spp, key), 0, (uint32_t)scramble_seeds(key));
+    v = mc_sobol_scrambled(stratum(s, s->spp, s->mask[0], key), 0, (uint32_t)scramble_seeds(key));
     return (double)((v << 21) | (pcg32_next(&s->rng) >> 11)) * 0x1p-53;
 }

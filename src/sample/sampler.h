@@ -58,6 +58,10 @@ struct sampler {
     uint32_t spp;
     uint32_t nx, ny;       /* stratified: the 2D grid */
     double scale[3];       /* stratified: 2^24 / (spp, nx, ny) */
+    /* log2 of spp, nx, ny where that is a power of two up to 2^24, else -1: the stratum
+     * arithmetic is then shifts and masks (the same values, exactly) */
+    int shift[3];
+    uint32_t mask[2];      /* the cycle-walking masks of mc_permute for spp and nx·ny */
     uint64_t pixel_key;    /* hash of (seed, pixel) */
     uint64_t dim_base;     /* dimension d's key is a hash of dim_base + d·γ */
     uint32_t index;        /* current sample */
