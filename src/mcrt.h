@@ -161,7 +161,8 @@ typedef struct mcrt_options {
      * from the halves). mcrt_render_pixels is then the denoised image, est_relmse its estimated
      * error (est_relmse_raw the raw image's), and an EXR from mcrt_render_save holds the layers
      * "raw", "A", "B" and, per half, "albedo.A", "albedo.B", "normal.*", "depth.*",
-     * "emission.*", which mcrt_denoise_file reads again. */
+     * "emission.*", which mcrt_denoise_file reads again. Refused with resume (the state holds
+     * no features of the passes before) and with "sppm" (its halves are not independent). */
     int denoise;
 } mcrt_options;
 

@@ -7,6 +7,16 @@
 #     the reference is a raw render (a denoised one would carry the denoiser's bias into both
 #     curves); the plot's script selects exactly each value's rows; a value other than off or on
 #     is refused with exit status 2.
+#   - --denoise with every sampler, with --crop (against the reference's same crop), with
+#     --passes, with --time and with --adaptive: the denoised image's relMSE against the
+#     converge test's reference (256 spp, another seed) is below the raw image's, its mean
+#     within 1% of the raw's (the issue's energy target), and its est_relmse below the raw's;
+#     the raw layer of the --passes render is the image of the same render without --denoise,
+#     and `mcrt denoise` of the --time render's EXR (which holds the render state too) gives its
+#     image again.
+#   - Refused, with exit status 2 and the output untouched: --resume with --denoise (the state
+#     keeps the film, not the features of the passes before) and --integrator sppm, whose halves
+#     are not independent (api.c).
 . tests/harness.sh.inc
 . tests/outputs.sh.inc
 
@@ -59,5 +69,86 @@ if [ "$code" -eq 2 ] && grep -q "denoise takes off or on, not 'maybe'" "$tmp/err
 else
     fail "converge denoise=maybe" "exit $code, '$(cat "$tmp/err")'"
 fi
+
+# mode NAME OPTIONS...: render at seed 1 with --denoise, and the same without into raw.pfm, and
+# check the three claims above against $tmp/c-ref.pfm (or $ref when set).
+mode() {
+    name=$1
+    shift
+    "$MCRT" --quiet --seed 1 --denoise -o "$tmp/m.exr" --stats "$tmp/m.json" "$@" "$tmp/c.mcrt" &&
+        "$MCRT" --quiet --seed 1 -o "$tmp/raw.pfm" "$@" "$tmp/c.mcrt" || {
+        fail "$name" "a render failed"
+        return
+    }
+    r=${ref:-$tmp/c-ref.pfm}
+    set -- "$(diff_num relMSE "$tmp/m.exr" "$r")" "$(diff_num relMSE "$tmp/raw.pfm" "$r")" \
+        "$(diff_num bias "$tmp/m.exr" "$tmp/raw.pfm")" "$(diff_num bias "$tmp/raw.pfm" "$tmp/black.pfm")" \
+        "$(json_num "$tmp/m.json" est_relmse)" "$(json_num "$tmp/m.json" est_relmse_raw)"
+    if echo "$@" | awk '{ exit !($1 < $2 && $3 < 0.01 * $4 && -$3 < 0.01 * $4 && $5 < $6) }'; then
+        ok "$name: denoised relMSE $1 < raw $2, mean shift $3 of $4, est. $5 < raw $6"
+    else
+        fail "$name" "denoised relMSE $1 vs raw $2, mean shift $3 of $4, est. $5 vs raw $6"
+    fi
+}
+printf 'PF\n48 48\n-1.0\n' >"$tmp/black.pfm"
+head -c $((48 * 48 * 12)) /dev/zero >>"$tmp/black.pfm"
+for sampler in $("$MCRT" --list sampler); do
+    mode "--denoise --sampler $sampler" --spp 16 --sampler "$sampler"
+done
+mode "--denoise --passes 4" --spp 4 --passes 4
+# layer EXR NAME OUT: the layer NAME of EXR as the image OUT (tests/tools/crops.c).
+layer() { "$O/tests/crops" "$3" 0,0,48,48 1 "$1:$2"; }
+if layer "$tmp/m.exr" raw "$tmp/m-raw.pfm" &&
+    [ "$(diff_num MSE "$tmp/m-raw.pfm" "$tmp/raw.pfm")" = 0 ]; then
+    ok "--denoise --passes 4: its raw layer is the render without --denoise"
+else
+    fail "--denoise --passes 4" "its raw layer differs from the render without --denoise"
+fi
+mode "--denoise --adaptive" --spp 16 --adaptive
+# --time: the passes' count depends on the machine's speed, so the raw image is the EXR's own.
+if "$MCRT" --quiet --seed 1 --denoise --spp 4 --time 1 -o "$tmp/t.exr" "$tmp/c.mcrt" &&
+    layer "$tmp/t.exr" raw "$tmp/t-raw.pfm" &&
+    "$MCRT" denoise --quiet "$tmp/t.exr" -o "$tmp/t2.exr"; then
+    den=$(diff_num relMSE "$tmp/t.exr" "$tmp/c-ref.pfm")
+    raw=$(diff_num relMSE "$tmp/t-raw.pfm" "$tmp/c-ref.pfm")
+    if echo "$den $raw" | awk '{ exit !($1 < $2) }' &&
+        [ "$(diff_num MSE "$tmp/t2.exr" "$tmp/t.exr")" = 0 ]; then
+        ok "--denoise --time 1: denoised relMSE $den < raw $raw, mcrt denoise gives it again"
+    else
+        fail "--denoise --time 1" "denoised relMSE $den, raw $raw, or mcrt denoise differs"
+    fi
+    if ! command -v exrheader >/dev/null 2>&1; then
+        skip "--denoise --time 1: state" "exrheader (OpenEXR's tools) not installed"
+    elif exrheader "$tmp/t.exr" | grep -q 'mcrtState\.00'; then
+        ok "--denoise --time 1: the EXR keeps the render state"
+    else
+        fail "--denoise --time 1" "the EXR has no render state"
+    fi
+else
+    fail "--denoise --time 1" "a render or mcrt denoise failed"
+fi
+# --crop: against the reference's own crop (the same pixels as in the whole image).
+"$MCRT" --quiet --spp 256 --seed 1000003 --crop 8,12,40,36 -o "$tmp/ref-crop.pfm" "$tmp/c.mcrt"
+printf 'PF\n32 24\n-1.0\n' >"$tmp/black.pfm"
+head -c $((32 * 24 * 12)) /dev/zero >>"$tmp/black.pfm"
+ref=$tmp/ref-crop.pfm mode "--denoise --crop 8,12,40,36" --spp 16 --crop 8,12,40,36
+
+# refused NAME WANT OPTIONS...: exit 2, the message WANT, the output untouched.
+refused() {
+    name=$1
+    want=$2
+    shift 2
+    echo keep >"$tmp/out.exr"
+    "$MCRT" --quiet --denoise -o "$tmp/out.exr" "$@" "$tmp/c.mcrt" 2>"$tmp/err"
+    code=$?
+    if [ "$code" -eq 2 ] && grep -q "$want" "$tmp/err" && [ "$(cat "$tmp/out.exr")" = keep ]; then
+        ok "$name: exit 2, '$(cat "$tmp/err")'"
+    else
+        fail "$name" "exit $code, '$(cat "$tmp/err")', output $(head -c 20 "$tmp/out.exr")"
+    fi
+}
+"$MCRT" --quiet --spp 2 --passes 2 --state -o "$tmp/p.exr" "$tmp/c.mcrt"
+refused "--denoise --resume" "which the denoiser needs" --spp 2 --passes 4 --resume "$tmp/p.exr"
+refused "--denoise --integrator sppm" "no independent half images" --spp 2 --integrator sppm
 
 finish

@@ -437,10 +437,21 @@ static mcrt_status settings(const mcrt_render *r, struct render_settings *rs,
         return mc_fail(d, MCRT_ERR_INVALID,
                        "passes, first_pass and resume do not work with adaptive sampling");
     /* The state holds the film, not the first-hit layers, which would then miss the passes
-     * done before. */
-    if (o->resume && first_hit_aovs(o->aovs))
+     * done before: the denoiser's features among them. */
+    if (o->resume && (first_hit_aovs(o->aovs) || o->denoise))
         return mc_fail(d, MCRT_ERR_INVALID,
-                       "resume keeps only the film: no albedo, normal or depth layers");
+                       "resume keeps only the film: no albedo, normal or depth layers%s",
+                       o->denoise ? ", which the denoiser needs (resume without it, or "
+                                    "render the passes in one run)" : "");
+    /* The denoiser needs two independent half images. sppm's are not: every pass's radii
+     * shrink with the photons of all passes before, both halves', and its error is mostly bias,
+     * the same in both halves, which their difference cannot see; it writes a mean and its
+     * error estimate as synthetic halves (v -+ sqrt(mse)) instead. */
+    if (o->denoise && !(*it)->radiance)
+        return mc_fail(d, MCRT_ERR_INVALID,
+                       "the %s integrator has no independent half images for the denoiser "
+                       "(--denoise needs a per-ray integrator)",
+                       mc_integrator_names[method]);
     return check_aovs(o->aovs, d);
 }
 
