@@ -94,6 +94,12 @@ const char *mcrt_scene_info(mcrt_scene *s);
  * MCRT_ERR_UNSUPPORTED, with a message naming the feature, when the scene uses something POV-Ray
  * cannot reproduce faithfully; no file is then written. Written to a temporary name and renamed. */
 mcrt_status mcrt_scene_export_pov(mcrt_scene *s, const char *path);
+/* Write a loaded scene as a Mitsuba 3 XML scene at path (variant scalar_rgb), its triangles as OBJ
+ * files beside it (path without .xml, then -mesh0.obj, ...), with the mapping of mcrt(1)
+ * `mcrt mitsuba`. MCRT_ERR_UNSUPPORTED, with a message "file:line:col: cannot export ..." naming
+ * the construct, when the scene uses something Mitsuba cannot reproduce; nothing is then written.
+ * Each file is written to a temporary name and renamed. */
+mcrt_status mcrt_scene_export_mitsuba(mcrt_scene *s, const char *path);
 void mcrt_scene_free(mcrt_scene *s);
 
 /* ---- Rendering ---- */

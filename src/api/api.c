@@ -16,6 +16,7 @@
 #include "core/clock.h"
 #include "core/file.h"
 #include "core/names.h"
+#include "export/mitsuba.h"
 #include "export/pov.h"
 #include "integrator/integrator.h"
 #include "io/image.h"
@@ -193,15 +194,27 @@ void mcrt_scene_film(const mcrt_scene *s, int *width, int *height, int *spp)
         *spp = s ? s->s.film.spp : 0;
 }
 
-mcrt_status mcrt_scene_export_pov(mcrt_scene *s, const char *path)
+/* The checks every exporter's entry point makes, then the export. */
+static mcrt_status export_scene(mcrt_scene *s, const char *path, const char *fn,
+                                mcrt_status (*save)(const struct scene *, const char *, mc_diag *))
 {
     if (!s)
         return MCRT_ERR_INVALID;
     if (!path)
-        return mc_fail(&s->err, MCRT_ERR_INVALID, "mcrt_scene_export_pov: path is NULL");
+        return mc_fail(&s->err, MCRT_ERR_INVALID, "%s: path is NULL", fn);
     if (!s->loaded)
-        return mc_fail(&s->err, MCRT_ERR_INVALID, "mcrt_scene_export_pov: no scene loaded");
-    return mc_pov_save(&s->s, path, &s->err);
+        return mc_fail(&s->err, MCRT_ERR_INVALID, "%s: no scene loaded", fn);
+    return save(&s->s, path, &s->err);
+}
+
+mcrt_status mcrt_scene_export_pov(mcrt_scene *s, const char *path)
+{
+    return export_scene(s, path, "mcrt_scene_export_pov", mc_pov_save);
+}
+
+mcrt_status mcrt_scene_export_mitsuba(mcrt_scene *s, const char *path)
+{
+    return export_scene(s, path, "mcrt_scene_export_mitsuba", mc_mitsuba_save);
 }
 
 void mcrt_options_init(mcrt_options *o)

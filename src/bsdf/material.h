@@ -51,6 +51,9 @@ struct material {
     struct mc_dielectric_ms ms;      /* rough glass: filled by mc_bsdf_prepare */
 };
 
+/* The largest base albedo of plastic (plastic.c says why): the exporters write the capped value. */
+#define MC_PLASTIC_MAX_ALBEDO 0.999f
+
 /* Whether every lobe of a kind is a delta lobe (mc_bsdf_is_delta). */
 enum mc_delta {
     MC_DELTA_NEVER,

@@ -28,8 +28,7 @@
  * F(cosθo) where GGX's shadowing loses little: measured (quadrature, η in [1.05, 4], α in
  * [0.03, 1]), the excess peaks at 7e-4·(1 − F(cosθo)) near α = 0.1, θo = 47°. ρ is therefore
  * capped at 0.999, which lowers A below 1 by 1e-3 (η → 1) to 1e-2 (η = 3) and keeps every
- * directional albedo below 1. */
-#define MAX_BASE_ALBEDO 0.999f
+ * directional albedo below 1 (MC_PLASTIC_MAX_ALBEDO, material.h). */
 
 /* A for base albedo rho: the geometric series of bounces between base and coat (above). */
 static float bounce_albedo(float rho, double fdr_in)
@@ -43,7 +42,7 @@ static void plastic_init(struct bsdf *b, const struct material *m)
     (void)m;
     /* The model needs a coat denser than the outside; ior < 1 acts as 1 (no coat). */
     b->ior = fmaxf(b->ior, 1.0f);
-    b->color = v3_min(v3_max(b->color, v3s(0.0f)), v3s(MAX_BASE_ALBEDO));
+    b->color = v3_min(v3_max(b->color, v3s(0.0f)), v3s(MC_PLASTIC_MAX_ALBEDO));
     fdr = mc_fresnel_diffuse(b->ior);
     fdr_in = 1.0 - (1.0 - fdr) / ((double)b->ior * b->ior);
     b->fdr = (float)fdr;

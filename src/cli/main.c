@@ -24,6 +24,7 @@ static const char usage[] =
     "usage: mcrt [render] [options] SCENE\n"
     "       mcrt info SCENE\n"
     "       mcrt pov SCENE [-o FILE]   (export for POV-Ray; see mcrt pov --help)\n"
+    "       mcrt mitsuba SCENE [-o FILE]   (export for Mitsuba 3; see mcrt mitsuba --help)\n"
     "       mcrt diff [options] TEST REF   (compare images; see mcrt diff --help)\n"
     "       mcrt converge [options] SCENE  (error against time; see mcrt converge --help)\n"
     "       mcrt merge A.exr B.exr ... -o OUT.exr  (merge render states; see mcrt merge --help)\n"
@@ -552,7 +553,7 @@ static int cmd_info(int argc, char **argv)
     return code;
 }
 
-/* ---- the pov command ---- */
+/* ---- the exporters: pov and mitsuba ---- */
 
 static const char pov_usage[] =
     "usage: mcrt pov SCENE [-o FILE]\n"
@@ -567,11 +568,29 @@ static const char pov_usage[] =
     "exit status: 0 success; 1 the file could not be written; 2 bad input, or a scene that uses\n"
     "something POV-Ray cannot reproduce faithfully (the message names it)\n";
 
-enum { POV_OUTPUT, POV_HELP, POV_END };
-static const struct arg_spec pov_options[POV_END + 1] = {
-    [POV_OUTPUT] = {NULL, 'o', 1}, [POV_HELP] = {"help", 0, 0}, [POV_END] = {NULL, 0, 0}};
+static const char mitsuba_usage[] =
+    "usage: mcrt mitsuba SCENE [-o FILE]\n"
+    "Write SCENE as a Mitsuba 3 XML scene (variant scalar_rgb) with the mapping of mcrt(1), its\n"
+    "triangles as OBJ files beside it (FILE without .xml, then -mesh0.obj, ...).\n"
+    "\n"
+    "options:\n"
+    "  -o FILE   the XML file to write (default: SCENE's name with .xml, in the current folder)\n"
+    "  --help    print this help and exit\n"
+    "\n"
+    "exit status: 0 success; 1 a file could not be written; 2 bad input, or a scene that uses\n"
+    "something Mitsuba cannot reproduce (the message names it, at its place in SCENE)\n";
 
-static int cmd_pov(int argc, char **argv)
+/* An exporter as a command: `mcrt NAME SCENE [-o FILE]`. */
+struct exporter {
+    const char *name, *usage, *suffix;
+    mcrt_status (*save)(mcrt_scene *s, const char *path);
+};
+
+enum { EXPORT_OUTPUT, EXPORT_HELP, EXPORT_END };
+static const struct arg_spec export_options[EXPORT_END + 1] = {
+    [EXPORT_OUTPUT] = {NULL, 'o', 1}, [EXPORT_HELP] = {"help", 0, 0}, [EXPORT_END] = {NULL, 0, 0}};
+
+static int run_export(int argc, char **argv, const struct exporter *e)
 {
     struct arg_parser p;
     const char *v, *scene_path = NULL, *output = NULL;
@@ -580,14 +599,14 @@ static int cmd_pov(int argc, char **argv)
     mcrt_status status;
     int opt, code;
     mc_args_init(&p, argc, argv);
-    while ((opt = mc_args_next(&p, pov_options, &v)) != ARG_END) {
+    while ((opt = mc_args_next(&p, export_options, &v)) != ARG_END) {
         if (opt == ARG_ERROR)
             return STATUS_USAGE;
-        if (opt == POV_HELP) {
-            fputs(pov_usage, stdout);
+        if (opt == EXPORT_HELP) {
+            fputs(e->usage, stdout);
             return fflush(stdout) == 0 ? STATUS_OK : STATUS_FAIL;
         }
-        if (opt == POV_OUTPUT)
+        if (opt == EXPORT_OUTPUT)
             output = v;
         else if (scene_path) {
             fprintf(stderr, "mcrt: more than one scene given ('%s' and '%s')\n", scene_path, v);
@@ -596,10 +615,10 @@ static int cmd_pov(int argc, char **argv)
             scene_path = v;
     }
     if (!scene_path) {
-        fprintf(stderr, "mcrt: no scene file given (see mcrt pov --help)\n");
+        fprintf(stderr, "mcrt: no scene file given (see mcrt %s --help)\n", e->name);
         return STATUS_USAGE;
     }
-    if (!output && !(output = owned = default_output(scene_path, "pov"))) {
+    if (!output && !(output = owned = default_output(scene_path, e->suffix))) {
         fprintf(stderr, "mcrt: out of memory\n");
         return STATUS_FAIL;
     }
@@ -620,8 +639,11 @@ static int cmd_pov(int argc, char **argv)
     } else {
         fputs(mcrt_scene_warnings(scene), stderr);
         code = STATUS_OK;
-        if ((status = mcrt_scene_export_pov(scene, output)) != MCRT_OK) {
-            fprintf(stderr, "mcrt: %s: %s\n", scene_path, mcrt_scene_error(scene));
+        if ((status = e->save(scene, output)) == MCRT_ERR_UNSUPPORTED) {
+            fprintf(stderr, "%s\n", mcrt_scene_error(scene)); /* "file[:line:col]: cannot export" */
+            code = STATUS_USAGE;
+        } else if (status != MCRT_OK) {
+            fprintf(stderr, "mcrt: %s\n", mcrt_scene_error(scene));
             code = status == MCRT_ERR_NOMEM || status == MCRT_ERR_IO ? STATUS_FAIL : STATUS_USAGE;
         }
     }
@@ -630,13 +652,25 @@ static int cmd_pov(int argc, char **argv)
     return code;
 }
 
+static int cmd_pov(int argc, char **argv)
+{
+    static const struct exporter e = {"pov", pov_usage, "pov", mcrt_scene_export_pov};
+    return run_export(argc, argv, &e);
+}
+
+static int cmd_mitsuba(int argc, char **argv)
+{
+    static const struct exporter e = {"mitsuba", mitsuba_usage, "xml", mcrt_scene_export_mitsuba};
+    return run_export(argc, argv, &e);
+}
+
 /* ---- commands ---- */
 
 /* Commands by name (`mcrt NAME ...`); without one, mcrt renders. Each gets argv from its name. */
 static const struct command {
     const char *name;
     int (*run)(int argc, char **argv);
-} commands[] = {{"render", cmd_render}, {"info", cmd_info}, {"pov", cmd_pov}, {"diff", mc_cli_diff}, {"converge", mc_cli_converge}, {"merge", mc_cli_merge},
+} commands[] = {{"render", cmd_render}, {"info", cmd_info}, {"pov", cmd_pov}, {"mitsuba", cmd_mitsuba}, {"diff", mc_cli_diff}, {"converge", mc_cli_converge}, {"merge", mc_cli_merge},
                 {"denoise", mc_cli_denoise}};
 
 int main(int argc, char **argv)

@@ -9,6 +9,7 @@
 
 #include "core/alloc.h"
 #include "core/file.h"
+#include "export/export.h"
 
 /* fade_distance of every light: POV-Ray's attenuation 2/(1 + (d/FD)²) is the inverse square law
  * times 2·FD² up to a relative FD²/d² (mapping note: 1e-3 gives ≤ 4.7e-4 at d = 1). */
@@ -46,25 +47,12 @@ static int path_traced(const struct scene *s)
            || k == INTEGRATOR_BSDF || k == INTEGRATOR_LIGHT;
 }
 
-static int is_emitter(const struct prim *p) { return !v3_is_zero(p->emit); }
-
-static int moves(const struct scene *s)
-{
-    size_t i;
-    if (!v3_is_zero(s->camera.move))
-        return 1;
-    for (i = 0; i < s->prim_count; i++)
-        if (s->prims[i].motion)
-            return 1;
-    return 0;
-}
-
 /* Whether an emitting shape makes every camera sample cast N×N shadow rays. */
 static int has_area_light(const struct scene *s)
 {
     size_t i;
     for (i = 0; i < s->prim_count; i++)
-        if (is_emitter(&s->prims[i]))
+        if (mc_export_is_emitter(&s->prims[i]))
             return 1;
     return 0;
 }
@@ -75,8 +63,6 @@ struct pov_shape {
     /* As an emitter: the light it is mapped to; NULL: an emitting one is refused. */
     void (*light)(FILE *f, const struct scene *s, const struct prim *p);
     int interior; /* a material with an interior (glass) on it has a verified inside */
-    int rank;   /* its place in the file's order (that of the references in ref/); 0: no entry,
-                 * the shape is refused */
 };
 static const struct pov_shape pov_shapes[PRIM_KIND_COUNT];
 /* The writer of each kind of light, by enum light_kind (defined below); area lights are written
@@ -84,9 +70,11 @@ static const struct pov_shape pov_shapes[PRIM_KIND_COUNT];
 typedef void pov_light_fn(FILE *f, const struct light *l);
 static pov_light_fn *const pov_lights[LIGHT_KIND_COUNT];
 
-static mcrt_status refuse(mc_diag *d, const char *what, const char *why)
+/* A refusal at the scene's first use of construct mark (enum scene_mark), or at none (-1). */
+static mcrt_status refuse(const struct scene *s, mc_diag *d, int mark, const char *what,
+                          const char *why)
 {
-    return mc_fail(d, MCRT_ERR_UNSUPPORTED, "cannot export %s to POV-Ray: %s", what, why);
+    return mc_export_refuse(d, s, mark, "POV-Ray", what, why);
 }
 
 /* ---- materials ---- */
@@ -128,18 +116,20 @@ static const struct pov_form *pov_form(const struct material *m)
     return NULL;
 }
 
-static mcrt_status check_material(const struct material *m, mc_diag *d)
+static mcrt_status check_material(const struct scene *s, const struct material *m, mc_diag *d)
 {
     const struct pov_form *form = pov_form(m);
     const char *why;
     char what[128], unmapped[160];
     snprintf(what, sizeof what, "material '%s'", m->name[0] ? m->name : "(default)");
+    if (m->texture || m->roughness_texture)
+        return refuse(s, d, MARK_TEXTURE, "a textured material", "textures are not mapped");
     if (!form) {
         snprintf(unmapped, sizeof unmapped, "%s (POV-Ray has no verified model of it)", m->kind->ops->what);
-        return refuse(d, what, unmapped);
+        return refuse(s, d, -1, what, unmapped);
     }
     if (form->refusal && (why = form->refusal(m)) != NULL)
-        return refuse(d, what, why);
+        return refuse(s, d, -1, what, why);
     return MCRT_OK;
 }
 
@@ -150,19 +140,19 @@ static mcrt_status check_emitter(const struct scene *s, const struct prim *p, mc
     char what[64];
     snprintf(what, sizeof what, "an emitting %s", mc_shape_names[p->kind]);
     if (!pov_shapes[p->kind].light)
-        return refuse(d, what, "only quads (spotlight-lobed area lights) and spheres (circular "
+        return refuse(s, d, -1, what, "only quads (spotlight-lobed area lights) and spheres (circular "
                                "area lights) are mapped");
     if (p->flags & PRIM_TWO_SIDED)
-        return refuse(d, "a two_sided emitter", "POV-Ray's area-light lobe is one-sided");
+        return refuse(s, d, MARK_TWO_SIDED_EMITTER, "a two_sided emitter", "POV-Ray's area-light lobe is one-sided");
     if (p->kind == PRIM_SPHERE && (p->flags & PRIM_FLIP))
-        return refuse(d, "an inward-emitting (flipped) sphere", "it is not a sphere light");
+        return refuse(s, d, -1, "an inward-emitting (flipped) sphere", "it is not a sphere light");
     /* The visible emitter shows emission + diffuse reflection; POV-Ray multiplies emission by the
      * pigment, so a channel of albedo 0 under a nonzero albedo in another has no exact form. */
     if (m->kind != MC_MATERIAL_KIND(diffuse))
-        return refuse(d, "an emitter with a non-diffuse material",
+        return refuse(s, d, -1, "an emitter with a non-diffuse material",
                       "the visible emitter is mapped as emission over a Lambertian pigment");
     if (!v3_is_zero(c) && (c.x == 0.0f || c.y == 0.0f || c.z == 0.0f))
-        return refuse(d, "an emitter whose albedo is zero in some channels only",
+        return refuse(s, d, -1, "an emitter whose albedo is zero in some channels only",
                       "POV-Ray's emission is scaled by the pigment");
     return MCRT_OK;
 }
@@ -176,34 +166,34 @@ static mcrt_status pov_check(const struct scene *s, mc_diag *d)
     int specular = 0;
     mcrt_status st;
     if (s->env_light >= 0) /* given, or the default sky of a scene without lights */
-        return refuse(d, "the environment light", "a constant sky has no verified POV-Ray mapping");
+        return refuse(s, d, MARK_ENVIRONMENT, "the environment light", "a constant sky has no verified POV-Ray mapping");
     if (s->integrator.max_depth == 0)
-        return refuse(d, "max_depth 0", "POV-Ray always lights the surfaces it sees");
+        return refuse(s, d, MARK_INTEGRATOR, "max_depth 0", "POV-Ray always lights the surfaces it sees");
     if (!path_traced(s))
-        return refuse(d, "this integrator method", "only the path tracer's have a mapping");
+        return refuse(s, d, MARK_INTEGRATOR, "this integrator method", "only the path tracer's have a mapping");
     for (i = 0; i < s->light_count; i++)
         if (s->lights[i].kind != LIGHT_AREA && !pov_lights[s->lights[i].kind]) {
             char what[64];
             snprintf(what, sizeof what, "a %s light", mc_light_names[s->lights[i].kind]);
-            return refuse(d, what, "the kind has no POV-Ray mapping");
+            return refuse(s, d, -1, what, "the kind has no POV-Ray mapping");
         }
     for (i = 0; i < s->prim_count; i++) {
         const struct prim *p = &s->prims[i];
         const struct material *m = &s->materials[p->material];
-        if (!pov_shapes[p->kind].rank)
-            return refuse(d, mc_shape_names[p->kind], "the shape has no POV-Ray mapping");
-        if ((st = check_material(m, d)) != MCRT_OK)
+        if (!pov_shapes[p->kind].object)
+            return refuse(s, d, -1, mc_shape_names[p->kind], "the shape has no POV-Ray mapping");
+        if ((st = check_material(s, m, d)) != MCRT_OK)
             return st;
         if (p->normals >= 0 && !v3_is_zero(s->normals[p->normals]))
-            return refuse(d, "smooth-shaded triangles", "interpolated normals are not verified");
+            return refuse(s, d, -1, "smooth-shaded triangles", "interpolated normals are not verified");
         if (p->motion && s->motions[p->motion - 1].omega != 0.0f)
-            return refuse(d, "spin", "only translations are exported as clock motion");
+            return refuse(s, d, -1, "spin", "only translations are exported as clock motion");
         if (pov_form(m)->interior && !pov_shapes[p->kind].interior) {
             char what[96];
             snprintf(what, sizeof what, "%s on a %s", m->kind->name, mc_shape_names[p->kind]);
-            return refuse(d, what, "only spheres have a verified inside");
+            return refuse(s, d, -1, what, "only spheres have a verified inside");
         }
-        if (is_emitter(p) && (st = check_emitter(s, p, d)) != MCRT_OK)
+        if (mc_export_is_emitter(p) && (st = check_emitter(s, p, d)) != MCRT_OK)
             return st;
         specular |= (mc_material_lobes(m) & MC_LOBE_SPECULAR) != 0;
     }
@@ -213,7 +203,7 @@ static mcrt_status pov_check(const struct scene *s, mc_diag *d)
      * counts rays, so it matches mcrt's depth for shading, not for emission one ray further).
      * Point lights are invisible and reach nothing through a specular surface in either. */
     if (specular && has_area_light(s))
-        return refuse(d, "a mirror or glass with area lights",
+        return refuse(s, d, -1, "a mirror or glass with area lights",
                       "POV-Ray lacks light -> specular -> diffuse paths (caustics) "
                       "and emitters one ray past the depth limit");
     return MCRT_OK;
@@ -250,7 +240,7 @@ static void put_motion(FILE *f, const struct scene *s, const struct prim *p)
 static void put_flags(FILE *f, const struct scene *s)
 {
     fprintf(f, "// povray +W%d +H%d +FE +A0.0 +AM2 +R5 -J", s->film.width, s->film.height);
-    if (moves(s))
+    if (mc_export_moves(s))
         fprintf(f, " +KFI1 +KFF%d +KI%.7g +KF%.7g", MC_POV_FRAMES, 0.5 / MC_POV_FRAMES,
                 1.0 - 0.5 / MC_POV_FRAMES);
     fputc('\n', f);
@@ -485,10 +475,10 @@ static void put_triangle(FILE *f, const struct prim *p)
 }
 
 static const struct pov_shape pov_shapes[PRIM_KIND_COUNT] = {
-    [PRIM_TRIANGLE] = {put_triangle, NULL, 0, 1},
-    [PRIM_SPHERE] = {put_sphere, put_sphere_light, 1, 2},
-    [PRIM_QUAD] = {put_quad, put_quad_light, 0, 3},
-    [PRIM_DISK] = {put_disk, NULL, 0, 4},
+    [PRIM_TRIANGLE] = {put_triangle, NULL, 0},
+    [PRIM_SPHERE] = {put_sphere, put_sphere_light, 1},
+    [PRIM_QUAD] = {put_quad, put_quad_light, 0},
+    [PRIM_DISK] = {put_disk, NULL, 0},
 };
 
 static void put_prim(FILE *f, const struct scene *s, const struct prim *p)
@@ -502,48 +492,23 @@ static void put_prim(FILE *f, const struct scene *s, const struct prim *p)
 }
 
 /* The whole file; 0 when out of memory. */
-/* qsort order of primitives: the kind (its rank in pov_shapes), material, flags, motion, normals,
- * then the bytes of the geometry and the emission. Any fixed order would do; what matters is that
- * it is not the BVH's leaf order, in which scene preparation leaves the primitives: the file must
- * not change when only the BVH build does, since references are compared with it byte for byte. */
-static int prim_order(const void *a, const void *b)
-{
-    const struct prim *p = *(const struct prim *const *)a, *q = *(const struct prim *const *)b;
-    int c;
-    if (p->kind != q->kind)
-        return pov_shapes[p->kind].rank < pov_shapes[q->kind].rank ? -1 : 1;
-    if (p->material != q->material)
-        return p->material < q->material ? -1 : 1;
-    if (p->flags != q->flags)
-        return p->flags < q->flags ? -1 : 1;
-    if (p->motion != q->motion)
-        return p->motion < q->motion ? -1 : 1;
-    if (p->normals != q->normals)
-        return p->normals < q->normals ? -1 : 1;
-    c = memcmp(p->p, q->p, sizeof p->p);
-    return c ? c : memcmp(&p->emit, &q->emit, sizeof p->emit);
-}
-
 static int put_scene(FILE *f, const struct scene *s)
 {
     size_t i;
     unsigned char *used = mc_calloc(s->material_count, 1); /* materials declared so far */
-    const struct prim **prims = mc_malloc((s->prim_count ? s->prim_count : 1) * sizeof *prims);
+    const struct prim **prims = mc_export_sorted_prims(s);
     if (!used || !prims) {
         free(used);
         free(prims);
         return 0;
     }
-    for (i = 0; i < s->prim_count; i++)
-        prims[i] = &s->prims[i];
-    qsort(prims, s->prim_count, sizeof *prims, prim_order);
     fputs("// POV-Ray 3.7 reference of an mcrt scene, written by `mcrt pov` (see mcrt(1)).\n", f);
     put_flags(f, s);
     if (s->film.filter != FILTER_BOX)
         fputs("// The scene's pixel filter is not box: this reference is box-filtered.\n", f);
     fputs("#version 3.7;\n", f);
     put_globals(f, s);
-    if (moves(s))
+    if (mc_export_moves(s))
         fprintf(f, "// Scene time: the shutter [%.7g, %.7g] spanned by the clock in [0, 1].\n"
                    "#declare MC_T = %.7g + clock*%.7g;\n",
                 s->camera.shutter[0], s->camera.shutter[1], s->camera.shutter[0],
@@ -551,7 +516,7 @@ static int put_scene(FILE *f, const struct scene *s)
     put_camera(f, s);
     for (i = 0; i < s->prim_count; i++) {
         int k = prims[i]->material;
-        if (is_emitter(prims[i]) || used[k])
+        if (mc_export_is_emitter(prims[i]) || used[k])
             continue;
         used[k] = 1;
         pov_form(&s->materials[k])->put(f, k, &s->materials[k]);
@@ -562,7 +527,7 @@ static int put_scene(FILE *f, const struct scene *s)
             pov_lights[s->lights[i].kind](f, &s->lights[i]);
     for (i = 0; i < s->prim_count; i++) {
         const struct prim *p = prims[i];
-        if (!is_emitter(p))
+        if (!mc_export_is_emitter(p))
             put_prim(f, s, p);
         else
             pov_shapes[p->kind].light(f, s, p);

@@ -165,6 +165,15 @@ static void NORETURN fail_nomem(struct parser *p)
     throw(p, MCRT_ERR_NOMEM);
 }
 
+/* Remember where the text first uses construct k (enum scene_mark). */
+static void mark(struct parser *p, enum scene_mark k, const struct token *at)
+{
+    if (!p->s->marks[k].line) {
+        p->s->marks[k].line = at->line;
+        p->s->marks[k].col = at->col;
+    }
+}
+
 /* A token as a message shows it; long words are cut at 64 bytes. */
 static const char *describe(const struct token *t, char buf[96])
 {
@@ -633,6 +642,8 @@ static void finish_camera(struct parser *p, struct block *b)
     if (b->v[CAM_FOCUS_DISTANCE].set)
         c->focus_distance = (float)b->v[CAM_FOCUS_DISTANCE].x[0];
     c->move = vec_or(b, CAM_MOVE, c->move);
+    if (b->v[CAM_MOVE].set && !v3_is_zero(c->move))
+        mark(p, MARK_CAMERA_MOVE, &b->v[CAM_MOVE].key);
     if (b->v[CAM_SHUTTER].set) {
         const struct value *v = &b->v[CAM_SHUTTER];
         if (!(v->x[1] >= v->x[0]))
@@ -670,6 +681,7 @@ static const struct key integrator_keys[] = {
 static void finish_integrator(struct parser *p, struct block *b)
 {
     struct integrator_desc *it = &p->s->integrator;
+    mark(p, MARK_INTEGRATOR, &b->head);
     if (b->v[INT_METHOD].set)
         it->method = (enum integrator_kind)b->v[INT_METHOD].choice;
     if (b->v[INT_MAX_DEPTH].set)
@@ -846,6 +858,7 @@ static void finish_material(struct parser *p, struct block *b)
         struct texref *r;
         if (!v->set)
             continue;
+        mark(p, MARK_TEXTURE, &v->key);
         p->texrefs = grow(p, p->texrefs, &p->cap_texrefs, p->ntexrefs, sizeof *p->texrefs);
         r = &p->texrefs[p->ntexrefs++];
         r->name = v->arg;
@@ -968,6 +981,7 @@ static void note_motion(struct parser *p, const struct block *b, size_t first,
     }
     if (v3_is_zero(m.move) && m.omega == 0.0f)
         return;
+    mark(p, MARK_SHAPE_MOVE, m.omega != 0.0f ? &spin->key : &b->v[SHAPE_MOVE].key);
     idx = mc_scene_add_motion(p->s, &m);
     if (idx < 0 && p->s->motion_count >= 65535)
         fail(p, &b->head, "too many moving shapes (the limit is 65535)");
@@ -977,13 +991,22 @@ static void note_motion(struct parser *p, const struct block *b, size_t first,
         p->s->prims[i].motion = (uint16_t)(idx + 1);
 }
 
+/* What every shape block notes of itself once its primitives [first, scene count) are added. */
+static void note_shape(struct parser *p, const struct block *b, size_t first,
+                       const struct value *spin)
+{
+    if (b->v[SHAPE_TWO_SIDED].set && b->v[SHAPE_EMIT].set && !v3_is_zero(vec_of(&b->v[SHAPE_EMIT])))
+        mark(p, MARK_TWO_SIDED_EMITTER, &b->v[SHAPE_TWO_SIDED].key);
+    note_material(p, b, first);
+    note_motion(p, b, first, spin);
+}
+
 static void add_shape(struct parser *p, const struct block *b, const struct prim *pr)
 {
     size_t first = p->s->prim_count;
     if (mc_scene_add_prim(p->s, pr) < 0)
         fail_nomem(p);
-    note_material(p, b, first);
-    note_motion(p, b, first, NULL);
+    note_shape(p, b, first, NULL);
 }
 
 /* The path of a file the scene names (an OBJ mesh, an image): as written when absolute or when
@@ -1091,8 +1114,7 @@ static void finish_mesh(struct parser *p, struct block *b)
     free((char *)m.path);
     if (st)
         throw(p, st);
-    note_material(p, b, first);
-    note_motion(p, b, first, &b->v[MESH_SPIN]);
+    note_shape(p, b, first, &b->v[MESH_SPIN]);
 }
 
 /* Any kind of light of MC_LIGHTS that has a block: its parameters made into a light by the kind's
@@ -1105,6 +1127,8 @@ static void finish_light(struct parser *p, struct block *b)
     param_values(p, b, 0, ld->params, ld->nparams, v);
     memset(&l, 0, sizeof l);
     l.kind = (enum light_kind)b->kind->light;
+    if (l.kind == LIGHT_ENVIRONMENT)
+        mark(p, MARK_ENVIRONMENT, &b->head);
     ld->build(&l, v);
     if (mc_scene_add_light(p->s, &l) < 0)
         fail_nomem(p);
@@ -1375,6 +1399,10 @@ mcrt_status mc_scene_parse(struct scene *s, const char *text, size_t len, const 
     p.name = name;
     p.base_dir = base_dir;
     p.d = d;
+    free(s->name);
+    if (!(s->name = mc_malloc(strlen(name) + 1)))
+        return mc_fail(d, MCRT_ERR_NOMEM, "%s: out of memory", name);
+    strcpy(s->name, name);
     block_kinds_make(&p.kinds);
     mc_lex_init(&p.lx, text, len, name, d);
     st = run(&p);

@@ -44,6 +44,7 @@ int mc_scene_init(struct scene *s)
 
 void mc_scene_free(struct scene *s)
 {
+    free(s->name);
     mc_bvh_free(&s->bvh);
     mc_bvh_free(&s->motion_bvh);
     mc_alias_free(&s->light_select);

@@ -59,7 +59,25 @@ struct scene_image {
     int w, h;
 };
 
+/* Constructs an exporter may refuse (export/), by where the scene text first uses them, so that a
+ * refusal points there as "file:line:col:". */
+enum scene_mark {
+    MARK_INTEGRATOR,        /* the integrator block */
+    MARK_CAMERA_MOVE,       /* a camera's nonzero `move` */
+    MARK_SHAPE_MOVE,        /* a shape's nonzero `move` or a mesh's nonzero `spin` */
+    MARK_TWO_SIDED_EMITTER, /* `two_sided` on an emitting shape */
+    MARK_ENVIRONMENT,       /* the environment block */
+    MARK_TEXTURE,           /* a material's `texture` or `roughness_texture` */
+    MARK_COUNT
+};
+struct scene_pos {
+    int line, col;                   /* 1-based; line 0: not in the text */
+};
+
 struct scene {
+    char *name;                      /* the scene's name in messages, as parsed (owned); NULL
+                                        for a scene not parsed */
+    struct scene_pos marks[MARK_COUNT];
     struct film_desc film;
     struct camera_desc camera;
     struct integrator_desc integrator;

@@ -136,7 +136,7 @@ static mcrt_scene *scene;
 static mcrt_options render_opt;
 static mcrt_render *rendered;   /* a finished render with every AOV, for the save operations */
 static mcrt_render *plain;      /* and one without, for the formats that hold no layers */
-static char exr_path[64], png_path[64], pfm_path[64], stats_path[64], pov_path[64];
+static char exr_path[64], png_path[64], pfm_path[64], stats_path[64], pov_path[64], xml_path[64];
 static char ref_path[64], z_path[64];
 
 static mcrt_status render(char *msg, size_t size)
@@ -186,6 +186,27 @@ static mcrt_status export_pov(char *msg, size_t size)
     mcrt_status st = mcrt_scene_export_pov(pov_scene, pov_path);
     snprintf(msg, size, "%s", mcrt_scene_error(pov_scene));
     remove(pov_path);
+    return st;
+}
+
+/* Export the same scene for Mitsuba: its XML and its two meshes; a failed export leaves none of
+ * them. */
+static mcrt_status export_mitsuba(char *msg, size_t size)
+{
+    mcrt_status st = mcrt_scene_export_mitsuba(pov_scene, xml_path);
+    char mesh[80];
+    int k, left = 0;
+    snprintf(msg, size, "%s", mcrt_scene_error(pov_scene));
+    for (k = 0; k < 2; k++) {
+        snprintf(mesh, sizeof mesh, "%.*s-mesh%d.obj", (int)strlen(xml_path) - 4, xml_path, k);
+        left |= st != MCRT_OK && access(mesh, F_OK) == 0;
+        remove(mesh);
+    }
+    if (st != MCRT_OK && (left || access(xml_path, F_OK) == 0)) {
+        snprintf(msg, size, "a failed export left a file");
+        st = MCRT_ERR_IO; /* not the MCRT_ERR_NOMEM the sweep wants */
+    }
+    remove(xml_path);
     return st;
 }
 
@@ -288,6 +309,7 @@ int main(void)
     snprintf(pfm_path, sizeof pfm_path, "%s/image.pfm", dir);
     snprintf(stats_path, sizeof stats_path, "%s/stats.json", dir);
     snprintf(pov_path, sizeof pov_path, "%s/scene.pov", dir);
+    snprintf(xml_path, sizeof xml_path, "%s/scene.xml", dir);
     snprintf(z_path, sizeof z_path, "%s/z.png", dir);
 
     sweep("mcrt_scene_load_file scenes/mesh.mcrt", load_file, 0);
@@ -341,6 +363,7 @@ int main(void)
     T_CHECK(pov_scene && mcrt_scene_load_file(pov_scene, "scenes/cornell.mcrt") == MCRT_OK,
             "load: %s", mcrt_scene_error(pov_scene));
     sweep("mcrt_scene_export_pov scenes/cornell.mcrt", export_pov, 0);
+    sweep("mcrt_scene_export_mitsuba scenes/cornell.mcrt", export_mitsuba, 0);
     mcrt_scene_free(pov_scene);
 
     mcrt_render_free(plain);

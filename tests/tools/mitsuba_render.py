@@ -1,0 +1,67 @@
+#!/usr/bin/env python3
+"""mitsuba_render.py: render a scene written by `mcrt mitsuba` with Mitsuba 3 (variant scalar_rgb).
+
+  mitsuba_render.py SCENE.xml OUT.exr [--spp N] [--renders K] [--threads T] [--seed S]
+                    [--variance VAR.exr] [--time TIME.txt]
+
+K renders with seeds S, S+1, ... are averaged into OUT.exr; with --variance, the variance of that
+mean per pixel and channel (the renders' sample variance / K, K >= 2) goes to VAR.exr, the
+reference's own noise for `mcrt diff`. --time writes the CPU seconds of the renders (the
+process's user + system time spent in mi.render, scene loading excluded). --threads 1 renders on
+one thread (drjit.set_thread_count; Mitsuba's scalar variants then trace one ray at a time).
+"""
+import argparse
+import os
+import sys
+import time
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("scene")
+    ap.add_argument("out")
+    ap.add_argument("--spp", type=int, default=0)
+    ap.add_argument("--renders", type=int, default=1)
+    ap.add_argument("--threads", type=int, default=0)
+    ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--variance")
+    ap.add_argument("--time")
+    a = ap.parse_args()
+    try:
+        import drjit as dr
+        import mitsuba as mi
+    except ImportError:
+        sys.stderr.write("mitsuba_render.py: Mitsuba 3 is not installed (pip install mitsuba)\n")
+        return 3
+    mi.set_variant("scalar_rgb")
+    if a.threads > 0:
+        dr.set_thread_count(a.threads)
+    scene = mi.load_file(a.scene)
+    total = None
+    total2 = None
+    cpu = 0.0
+    for k in range(a.renders):
+        t0 = os.times()
+        img = mi.render(scene, seed=a.seed + k, spp=a.spp)
+        t1 = os.times()
+        cpu += (t1.user - t0.user) + (t1.system - t0.system)
+        x = mi.TensorXf(img)
+        total = x if total is None else total + x
+        total2 = x * x if total2 is None else total2 + x * x
+    n = a.renders
+    mean = total / n  # float32 sums: K renders of values near 1 lose nothing that matters
+    mi.Bitmap(mean).write(a.out)
+    if a.variance:
+        if n < 2:
+            sys.stderr.write("mitsuba_render.py: --variance needs --renders 2 or more\n")
+            return 2
+        var = (total2 - n * mean * mean) / (n - 1) / n
+        mi.Bitmap(dr.maximum(var, 0.0)).write(a.variance)
+    if a.time:
+        with open(a.time, "w") as f:
+            f.write("%.3f\n" % cpu)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
