@@ -1,5 +1,5 @@
 /* bvh.c: single-ray traversal of the 8-wide BVH (built in bvh_build.c) with SIMD node tests and
- * 4-wide watertight triangle tests (SSE, or portable C99 under MCRT_BVH_PORTABLE), of static
+ * 4-wide watertight triangle and quad tests (SSE, or portable C99 under MCRT_BVH_PORTABLE), of static
  * primitives and of moving ones (tested in their time-0 frame, one by one). */
 #include "geom/bvh.h"
 
@@ -302,9 +302,20 @@ static ALWAYS_INLINE void tri4_test(const struct tri4 *k, const struct tri_ray *
                            _mm_cmpgt_ps(e2, zero));
     __m128 undecided = _mm_or_ps(_mm_or_ps(_mm_cmpeq_ps(e0, zero), _mm_cmpeq_ps(e1, zero)),
                                  _mm_or_ps(_mm_cmpeq_ps(e2, zero), _mm_cmpunord_ps(det, det)));
-    /* Rejected: edge functions of both signs; det = 0; ts = 0 or of the other sign than det (the
-     * sign bit of det ^ ts; only sign bits are read). */
-    __m128 reject = _mm_or_ps(_mm_or_ps(_mm_and_ps(neg, pos), _mm_xor_ps(det, ts)),
+    /* Quad lanes (all ones where prim[lane] has MC_TRI4_QUAD) are rejected where e1 or e2 is of
+     * the other sign than det or larger than |det|: s or t outside [0, 1] (mc_watertight_intersect;
+     * the lanes decided here have no zero edge function). */
+    const __m128 sign = _mm_set1_ps(-0.0f);
+    __m128 quad = _mm_castsi128_ps(_mm_srai_epi32(_mm_load_si128((const __m128i *)k->prim), 31));
+    __m128 adet = _mm_andnot_ps(sign, det);
+    __m128 outside = _mm_or_ps(_mm_or_ps(_mm_xor_ps(e1, det), _mm_xor_ps(e2, det)),
+                               _mm_or_ps(_mm_cmpgt_ps(_mm_andnot_ps(sign, e1), adet),
+                                         _mm_cmpgt_ps(_mm_andnot_ps(sign, e2), adet)));
+    /* Rejected: outside the triangle (edge functions of both signs) or the quad (only sign bits
+     * of outside are read, as of the rest); det = 0; ts = 0 or of the other sign than det (the
+     * sign bit of det ^ ts). */
+    __m128 shape = _mm_or_ps(_mm_and_ps(quad, outside), _mm_andnot_ps(quad, _mm_and_ps(neg, pos)));
+    __m128 reject = _mm_or_ps(_mm_or_ps(shape, _mm_xor_ps(det, ts)),
                               _mm_or_ps(_mm_cmpeq_ps(det, zero), _mm_cmpeq_ps(ts, zero)));
     unsigned und = (unsigned)_mm_movemask_ps(undecided) & live;
     unsigned cand = live & ~und & ~(unsigned)_mm_movemask_ps(reject);
@@ -312,7 +323,7 @@ static ALWAYS_INLINE void tri4_test(const struct tri4 *k, const struct tri_ray *
     out->hit = 0;
     if (cand) {
         /* t must exceed mc_tri_t_error's bound (prim.h), computed in the same operations. */
-        const __m128 sign = _mm_set1_ps(-0.0f), g2 = _mm_set1_ps(MC_GAMMA(2)),
+        const __m128 g2 = _mm_set1_ps(MC_GAMMA(2)),
                      g3 = _mm_set1_ps(MC_GAMMA(3)), g5 = _mm_set1_ps(MC_GAMMA(5));
         __m128 t = _mm_div_ps(ts, det);
         __m128 mx = _mm_max_ps(_mm_max_ps(_mm_andnot_ps(sign, ax), _mm_andnot_ps(sign, bx)),
@@ -335,7 +346,7 @@ static ALWAYS_INLINE void tri4_test(const struct tri4 *k, const struct tri_ray *
                        _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_mul_ps(g3, me), mz),
                                              _mm_mul_ps(de, mz)),
                                   _mm_mul_ps(dz, me))),
-            _mm_andnot_ps(sign, det));
+            adet);
         cand &= (unsigned)_mm_movemask_ps(
             _mm_and_ps(_mm_cmpgt_ps(t, dt), _mm_cmplt_ps(t, _mm_set1_ps(tmax))));
         out->hit = cand;
@@ -372,7 +383,11 @@ static ALWAYS_INLINE void tri4_test(const struct tri4 *k, const struct tri_ray *
             out->undecided |= 1u << l;
             continue;
         }
-        if (((e0 < 0.0f) | (e1 < 0.0f) | (e2 < 0.0f)) & ((e0 > 0.0f) | (e1 > 0.0f) | (e2 > 0.0f)))
+        if (k->prim[l] & MC_TRI4_QUAD
+                ? ((det < 0.0f) != (e1 < 0.0f)) | ((det < 0.0f) != (e2 < 0.0f))
+                      | (fabsf(e1) > fabsf(det)) | (fabsf(e2) > fabsf(det))
+                : ((e0 < 0.0f) | (e1 < 0.0f) | (e2 < 0.0f))
+                      & ((e0 > 0.0f) | (e1 > 0.0f) | (e2 > 0.0f)))
             continue;
         if ((det == 0.0f) | (ts == 0.0f) | ((det < 0.0f) != (ts < 0.0f)))
             continue;
@@ -415,12 +430,12 @@ static ALWAYS_INLINE int leaf_static(void *ctx, const struct bvh *b, const struc
                 h->t = res.t[l];
                 h->u = res.e1[l] / res.det[l];
                 h->v = res.e2[l] / res.det[l];
-            } else if (!mc_prim_intersect_prep(&prims[k->prim[l]], &r->q, h)) {
+            } else if (!mc_prim_intersect_prep(&prims[mc_tri4_prim(k->prim[l])], &r->q, h)) {
                 continue;
             }
             if (any_hit)
                 return 1;
-            h->prim = k->prim[l];
+            h->prim = mc_tri4_prim(k->prim[l]);
             found = 1;
         }
     }
@@ -447,7 +462,7 @@ static ALWAYS_INLINE int leaf_moving(void *ctx, const struct bvh *b, const struc
                                      uint32_t first, uint32_t count, struct hit *h, int any_hit)
 {
     struct moving_ray *m = ctx;
-    uint32_t k, base = b->tri4[first].prim[0];
+    uint32_t k, base = mc_tri4_prim(b->tri4[first].prim[0]);
     int found = 0;
     for (k = base; k < base + count; k++) {
         const struct prim *p = &prims[k];

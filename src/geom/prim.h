@@ -148,8 +148,18 @@ static inline float mc_abs_max3(float a, float b, float c)
 
 /* mc_prim_intersect with the constants precomputed; the results are bitwise the same. */
 int mc_prim_intersect_prep(const struct prim *p, const struct ray_prep *q, struct hit *h);
-/* Whether triangle p's vertices are collinear: the cross product of its edges, in double, is
- * exactly zero. mc_prim_intersect never reports a hit on such a triangle. */
+/* The vertices of the triangle whose edge functions the watertight test (triangle.c) evaluates
+ * for a triangle (its own) or a quad (corner, corner + edge1, corner + edge2, in float: the quad
+ * is the parallelogram they span). */
+static inline void mc_prim_corners(const struct prim *p, vec3 v[3])
+{
+    int quad = p->kind == PRIM_QUAD;
+    v[0] = p->p[0];
+    v[1] = quad ? v3_add(p->p[0], p->p[1]) : p->p[1];
+    v[2] = quad ? v3_add(p->p[0], p->p[2]) : p->p[2];
+}
+/* Whether the mc_prim_corners of a triangle or quad p are collinear: the cross product of their
+ * differences, in double, is exactly zero. mc_prim_intersect never reports a hit on such a one. */
 int mc_prim_degenerate(const struct prim *p);
 
 struct aabb mc_prim_bounds(const struct prim *p);

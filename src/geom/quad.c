@@ -1,31 +1,17 @@
 /* quad.c: the parallelogram, p[0] a corner and p[1], p[2] its edges; front side along
- * edge1×edge2. A plane test and the point's coordinates in the dual basis of the edges; uniform
- * points by the affine map of [0,1)². */
+ * edge1×edge2. The triangles' watertight test over the parallelogram's region; uniform points by
+ * the affine map of [0,1)². */
 #include "geom/shape_impl.h"
 
-/* Plane hit, then (s, t) from the dual basis of (e1, e2): with n = e1×e2, the vectors
- * (e2×n)/|n|² and (n×e1)/|n|² have dot products δij with e1 and e2. */
+/* The watertight test's edge functions for the triangle (corner, corner + e1, corner + e2),
+ * accepted over the parallelogram (shape_impl.h): the weights of its second and third vertices
+ * are s and t. Quads sharing an edge with the same corners agree on it as triangles do, and the
+ * BVH tests quads four at a time in its triangle blocks with the same float operations. */
 int mc_quad_intersect(const struct prim *p, const struct ray_prep *q, struct hit *h)
 {
-    const struct ray *r = &q->r;
-    vec3 e1 = p->p[1], e2 = p->p[2], n = v3_cross(e1, e2);
-    float denom = v3_dot(n, r->d), n2, t, s, tt;
-    vec3 w;
-    if (denom == 0.0f) /* parallel ray, or a degenerate quad (n = 0) */
-        return 0;
-    t = v3_dot(n, v3_sub(p->p[0], r->o)) / denom;
-    if (!mc_shape_accept(t, h))
-        return 0;
-    w = v3_madd(v3_sub(r->o, p->p[0]), r->d, t);
-    n2 = v3_dot(n, n);
-    s = v3_dot(w, v3_cross(e2, n)) / n2;
-    tt = v3_dot(w, v3_cross(n, e1)) / n2;
-    if (!(s >= 0.0f && s <= 1.0f && tt >= 0.0f && tt <= 1.0f))
-        return 0;
-    h->t = t;
-    h->u = s;
-    h->v = tt;
-    return 1;
+    vec3 v[3];
+    mc_prim_corners(p, v);
+    return mc_watertight_intersect(v, q, 1, h);
 }
 
 struct aabb mc_quad_bounds(const struct prim *p)

@@ -29,6 +29,13 @@
 MC_SHAPES(MC_SHAPE_DECLARE)
 #undef MC_SHAPE_DECLARE
 
+/* The watertight test (triangle.c) of the triangle v[0..2], or with parallelogram set of the
+ * parallelogram v[0] + s·(v[1] − v[0]) + t·(v[2] − v[0]), s, t in [0, 1]: the same edge functions,
+ * accepted over the other region. As mc_NAME_intersect, with h->u, h->v the weights of v[1] and
+ * v[2] (a quad's s and t). Collinear vertices (in double) are never hit. */
+int mc_watertight_intersect(const vec3 *v, const struct ray_prep *q, int parallelogram,
+                            struct hit *h);
+
 /* The hit distance is accepted only if it is a number in (0, h->t). Comparing the final rounded t,
  * and nothing else, makes the outcome independent of the order in which primitives are tested, so a
  * BVH and a brute-force loop report the very same nearest hit. NaN fails both comparisons. */

@@ -1,14 +1,14 @@
-/* tri4.c: the BVH's triangle blocks for the 4-wide watertight test (Woop, Benthin and Wald, JCGT
- * 2(1) 2013), filled leaf by leaf from the primitives in leaf order; layout and contract in
- * tri4.h. */
+/* tri4.c: the BVH's blocks for the 4-wide watertight test (Woop, Benthin and Wald, JCGT 2(1)
+ * 2013) of triangles and quads, filled leaf by leaf from the primitives in leaf order; layout and
+ * contract in tri4.h. */
 #include "geom/tri4.h"
 
-/* Whether the 4-wide test may decide p: a triangle whose vertices are not collinear. The scalar
- * test rejects hits on collinear triangles after the fact (mc_prim_degenerate); the 4-wide test
- * has no such check, so those triangles go to scalar lanes. */
+/* Whether the 4-wide test may decide p: a triangle or a quad whose corners are not collinear.
+ * The scalar test rejects hits on collinear ones after the fact (mc_prim_degenerate); the 4-wide
+ * test has no such check, so those go to scalar lanes. */
 static int decidable(const struct prim *p)
 {
-    return p->kind == PRIM_TRIANGLE && !mc_prim_degenerate(p);
+    return (p->kind == PRIM_TRIANGLE || p->kind == PRIM_QUAD) && !mc_prim_degenerate(p);
 }
 
 void mc_tri4_fill(struct tri4 *k, const struct prim *prims, uint32_t first, uint32_t count)
@@ -18,12 +18,17 @@ void mc_tri4_fill(struct tri4 *k, const struct prim *prims, uint32_t first, uint
         struct tri4 *blk = &k[i / 4];
         int lane = (int)(i % 4), v;
         int simd = i < count && decidable(&prims[first + i]);
+        vec3 c[3];
+        if (simd)
+            mc_prim_corners(&prims[first + i], c);
         for (v = 0; v < 3; v++) {
-            vec3 p = simd ? prims[first + i].p[v] : v3s(NAN);
+            vec3 p = simd ? c[v] : v3s(NAN);
             blk->v[v][0][lane] = p.x;
             blk->v[v][1][lane] = p.y;
             blk->v[v][2][lane] = p.z;
         }
-        blk->prim[lane] = i < count ? first + i : UINT32_MAX;
+        blk->prim[lane] = i >= count ? UINT32_MAX
+                          : prims[first + i].kind == PRIM_QUAD ? (first + i) | MC_TRI4_QUAD
+                                                               : first + i;
     }
 }

@@ -15,17 +15,23 @@
  *
  * v[vertex][axis][lane] is the vertex coordinate, so that one 4-wide load gives an axis of a vertex
  * of four triangles, and the traversal picks the axes of the ray's permutation (Woop et al. 2013,
- * §3) by index. A lane whose coordinates are all NaN is one the 4-wide test must not decide: not a
- * triangle, or a triangle the scalar test rejects as degenerate (its vertices collinear in double
- * precision); the traversal tests it with mc_prim_intersect_prep. The NaN marks them at no extra
+ * §3) by index. A quad's lane holds its mc_prim_corners (corner, corner + edge1, corner + edge2)
+ * and is flagged by MC_TRI4_QUAD in prim[lane]: the same edge functions, accepted over the
+ * parallelogram, as mc_quad_intersect does. A lane whose coordinates are all NaN is one the 4-wide
+ * test must not decide: a sphere or a disk, or a triangle or quad the scalar test rejects as
+ * degenerate (mc_prim_degenerate); the traversal tests it with mc_prim_intersect_prep. The NaN marks them at no extra
  * cost: the 4-wide test's determinant comes out NaN there. prim[lane] is the lane's index in the
- * BVH's primitive array (what a hit reports); a leaf's primitives are consecutive there, from
- * prim[0] of its first block. 160 bytes: the vertices' 144 and the indices' 16 keep every block's
+ * BVH's primitive array (what a hit reports), below 2^31 (mc_bvh_build), with MC_TRI4_QUAD or'd
+ * in for a quad; a leaf's primitives are consecutive there, from prim[0] of its first block. 160 bytes: the vertices' 144 and the indices' 16 keep every block's
  * vectors 16-byte aligned. */
 struct tri4 {
     float v[3][3][4];
     uint32_t prim[4]; /* padding lanes: UINT32_MAX */
 };
+
+/* prim[lane]'s flag of a quad, and the primitive's index without it. */
+#define MC_TRI4_QUAD 0x80000000u
+static inline uint32_t mc_tri4_prim(uint32_t lane_prim) { return lane_prim & ~MC_TRI4_QUAD; }
 
 /* Blocks that a leaf of count primitives takes. */
 static inline uint32_t mc_tri4_blocks(uint32_t count) { return (count + 3) / 4; }

@@ -118,7 +118,7 @@ static int check_leaf(const struct bvh *b, const struct prim *prims, size_t n, u
     int bad = 0;
     if ((size_t)first + nb > b->tri4_count)
         return 1;
-    p0 = b->tri4[first].prim[0];
+    p0 = mc_tri4_prim(b->tri4[first].prim[0]);
     for (j = 0; j < 4 * nb; j++) {
         const struct tri4 *k = &b->tri4[first + j / 4];
         uint32_t p = k->prim[j % 4];
@@ -128,6 +128,10 @@ static int check_leaf(const struct bvh *b, const struct prim *prims, size_t n, u
             bad += p != UINT32_MAX || k->v[0][0][j % 4] == k->v[0][0][j % 4];
             continue;
         }
+        /* A quad's lane, and only a quad's, carries the flag. */
+        if ((size_t)mc_tri4_prim(p) < n)
+            bad += !(p & MC_TRI4_QUAD) != (prims[mc_tri4_prim(p)].kind != PRIM_QUAD);
+        p = mc_tri4_prim(p);
         if (p != p0 + j || p >= n) {
             bad++;
             continue;
