@@ -128,9 +128,10 @@ $(O)/obj/src/mpi/%.o: src/mpi/%.c $(CONFIG_MK)
 	@$(if $(Q),echo "  MPICC   $<")
 	$(Q)$(MPICC) $(CFLAGS) -c $< -o $@
 
-$(O)/mcrt-mpi: $(O)/obj/src/mpi/main.o $(O)/obj/src/cli/args.o $(O)/libmcrt.a $(CONFIG_MK)
+MPI_OBJ := $(patsubst %.c,$(O)/obj/%.o,$(wildcard src/mpi/*.c)) $(O)/obj/src/cli/args.o
+$(O)/mcrt-mpi: $(MPI_OBJ) $(O)/libmcrt.a $(CONFIG_MK)
 	@$(if $(Q),echo "  LD      $@")
-	$(Q)$(MPICC) $(CFLAGS) $(LDFLAGS) -o $@ $(O)/obj/src/mpi/main.o $(O)/obj/src/cli/args.o $(O)/libmcrt.a $(LDLIBS)
+	$(Q)$(MPICC) $(CFLAGS) $(LDFLAGS) -o $@ $(MPI_OBJ) $(O)/libmcrt.a $(LDLIBS)
 
 $(O)/tests/%: tests/unit/%.c tests/t.h tests/prim_util.h $(O)/libmcrt.a $(CONFIG_MK)
 	@mkdir -p $(@D)

@@ -1,15 +1,18 @@
 #!/bin/sh
-# mpi.sh: mcrt-mpi across processes of one machine (mpirun --oversubscribe): three ranks make the
-# image of one process byte for byte (the EXR with its state), --target-error stops the ranks
-# at the pass one process stops at, and a rank that cannot read the scene's mesh ends the job
-# with its message on rank 0, exit 2, the output untouched. Skipped when mcrt-mpi was not built
-# (no MPI) or mpirun is missing. Prints "ok ..." or "FAIL ...: why" per check, then
+# mpi.sh: mcrt-mpi across processes of one machine (mpirun --oversubscribe), with each schedule
+# of its table (the names mcrt-mpi --help lists): three ranks make the image of one process byte
+# for byte (the EXR with its state), whichever rank renders which pass, and the passes each rank
+# rendered add up; --target-error stops the ranks at the pass one process stops at; and a rank
+# that cannot read the scene's mesh ends the job with its message on rank 0, exit 2, the output
+# untouched. An unknown schedule is refused. Skipped when mcrt-mpi was not built (no MPI) or
+# mpirun is missing. Prints "ok ..." or "FAIL ...: why" per check, then
 # "N passed, N failed[, N skipped]"; exits 1 if any failed.
 . tests/harness.sh.inc
 
 MPI=$(dirname "$MCRT")/mcrt-mpi
 if [ ! -x "$MPI" ] || ! command -v mpirun >/dev/null 2>&1; then
-    for c in "3 ranks equal one process" "--target-error across ranks" "a failing rank"; do
+    for c in "3 ranks equal one process" "--target-error across ranks" "a failing rank" \
+        "an unknown schedule"; do
         skip "$c" "mcrt-mpi or mpirun missing (install libopenmpi-dev openmpi-bin, rebuild)"
     done
     finish
@@ -31,37 +34,53 @@ printf 'film { width 32 height 24 spp 2 }\ncamera { eye 0 3 6  look 0 0.5 0  fov
     >"$tmp/s.mcrt"
 cd "$tmp" || exit 1
 
-mpi -np 3 "$MPI" --quiet --threads 1 --seed 5 --passes 7 --state -o "$tmp/mpi.exr" s.mcrt 2>"$tmp/err"
 "$MCRT" --quiet --seed 5 --passes 7 --state -o "$tmp/one.exr" s.mcrt
-if cmp -s "$tmp/mpi.exr" "$tmp/one.exr"; then
-    ok "mpirun -np 3, 7 passes: byte-identical to one process (image and state)"
-else
-    fail "mpirun -np 3" "differs from one process: $(cat "$tmp/err")"
-fi
-
-mpi -np 3 "$MPI" --threads 1 --seed 5 --target-error 0.005 -o "$tmp/mt.exr" s.mcrt 2>"$tmp/err"
 "$MCRT" --quiet --seed 5 --target-error 0.005 -o "$tmp/ot.exr" s.mcrt
-if cmp -s "$tmp/mt.exr" "$tmp/ot.exr" && grep -q 'est. relMSE 0.00[0-4]' "$tmp/err"; then
-    ok "--target-error 0.005 on 3 ranks: $(grep -oE '[0-9]+ passes' "$tmp/err"), as one process"
-else
-    fail "--target-error across ranks" "$(cat "$tmp/err")"
-fi
-
-# Rank 2 runs in a folder without the mesh: as a machine whose file system lacks it.
-mkdir "$tmp/elsewhere"
+mkdir "$tmp/elsewhere" # rank 2 runs there, without the mesh: as a machine whose file system lacks it
 echo keep >"$tmp/keep.exr"
-# Under make check, LeakSanitizer finds OpenMPI's own allocations (in its plugins, unloaded and
-# so unnamed) on this error path and would turn exit 2 into 1; the two checks above keep
-# checking mcrt-mpi's own memory.
-ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0 \
-    mpi -np 2 --wdir "$tmp" "$MPI" --threads 1 --passes 6 -o "$tmp/keep.exr" "$tmp/s.mcrt" : \
-    -np 1 --wdir "$tmp/elsewhere" "$MPI" --threads 1 --passes 6 -o "$tmp/keep.exr" "$tmp/s.mcrt" \
-        2>"$tmp/err"
+schedules=$("$MPI" --help | sed -n 's/^      \([a-z]*\)  .*/\1/p')
+[ -n "$schedules" ] || fail "mcrt-mpi --help lists no schedule"
+for s in $schedules; do
+    mpi -np 3 "$MPI" --schedule "$s" --threads 1 --seed 5 --passes 7 --state -o "$tmp/mpi.exr" \
+        s.mcrt 2>"$tmp/err"
+    # The passes each rank rendered, from "7 passes on 3 ranks (3+2+2, static)".
+    by_rank=$(sed -n 's/.* 7 passes on 3 ranks (\([0-9+]*\), .*/\1/p' "$tmp/err")
+    if cmp -s "$tmp/mpi.exr" "$tmp/one.exr" && [ -n "$by_rank" ] && [ $(($by_rank)) -eq 7 ]; then
+        ok "--schedule $s, mpirun -np 3, 7 passes ($by_rank): byte-identical to one process (image and state)"
+    else
+        fail "--schedule $s, mpirun -np 3" "differs from one process: $(cat "$tmp/err")"
+    fi
+
+    mpi -np 3 "$MPI" --schedule "$s" --threads 1 --seed 5 --target-error 0.005 -o "$tmp/mt.exr" \
+        s.mcrt 2>"$tmp/err"
+    if cmp -s "$tmp/mt.exr" "$tmp/ot.exr" && grep -q 'est. relMSE 0.00[0-4]' "$tmp/err"; then
+        ok "--schedule $s, --target-error 0.005 on 3 ranks: $(grep -oE '[0-9]+ passes' "$tmp/err"), as one process"
+    else
+        fail "--schedule $s, --target-error across ranks" "$(cat "$tmp/err")"
+    fi
+
+    # Under make check, LeakSanitizer finds OpenMPI's own allocations (in its plugins, unloaded
+    # and so unnamed) on this error path and would turn exit 2 into 1; the two checks above keep
+    # checking mcrt-mpi's own memory.
+    ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0 \
+        mpi -np 2 --wdir "$tmp" "$MPI" --schedule "$s" --threads 1 --passes 6 -o "$tmp/keep.exr" \
+        "$tmp/s.mcrt" : -np 1 --wdir "$tmp/elsewhere" "$MPI" --schedule "$s" --threads 1 \
+        --passes 6 -o "$tmp/keep.exr" "$tmp/s.mcrt" 2>"$tmp/err"
+    rc=$?
+    if [ "$rc" -eq 2 ] && grep -q '^mcrt-mpi: rank 2: .*tri\.obj' "$tmp/err" &&
+        [ "$(cat "$tmp/keep.exr")" = keep ]; then
+        ok "--schedule $s, a rank without the mesh: exit 2, '$(grep '^mcrt-mpi: rank 2' "$tmp/err")', output untouched"
+    else
+        fail "--schedule $s, a failing rank" "exit $rc: $(cat "$tmp/err")"
+    fi
+done
+
+mpi -np 1 "$MPI" --schedule round-robin --passes 1 -o "$tmp/keep.exr" s.mcrt 2>"$tmp/err"
 rc=$?
-if [ "$rc" -eq 2 ] && grep -q '^mcrt-mpi: rank 2: .*tri\.obj' "$tmp/err" &&
+if [ "$rc" -eq 2 ] && grep -q "^mcrt-mpi: --schedule: expected .*, got 'round-robin'" "$tmp/err" &&
     [ "$(cat "$tmp/keep.exr")" = keep ]; then
-    ok "a rank without the mesh: exit 2, '$(grep '^mcrt-mpi: rank 2' "$tmp/err")', output untouched"
+    ok "an unknown schedule: exit 2, '$(head -1 "$tmp/err")'"
 else
-    fail "a failing rank" "exit $rc: $(cat "$tmp/err")"
+    fail "an unknown schedule" "exit $rc: $(cat "$tmp/err")"
 fi
 finish

@@ -3,18 +3,14 @@
  *
  * Rank 0 reads the scene file and broadcasts its text, so one file is read, not one per rank.
  * The render is a sequence of passes, each an independent sample set keyed by (seed, pass)
- * (mcrt_options.first_pass), so any rank can render any pass: in round j rank r renders pass
- * j·N + r (a static rule; every pass costs about the same, so a round waits for its slowest rank
- * only as long as one pass). Rank 0 then takes the passes' sums in pass order, which is rank
- * order, and adds them one after another to its image (mcrt_render_add_sums): exactly the sums
- * a single process makes when it merges its passes as it renders them, so the image is
- * bit-identical to one process's. MPI's own reductions would regroup the floating-point sums
- * (anchor notes, section 4), so they are not used for the image. After each round rank 0
- * decides whether to go on (--passes reached, --target-error met after some pass, whose later
- * passes of the round are dropped as one process would not have rendered them, or --time
- * spent) and broadcasts it: one collective per round. A rank that fails sends its message
- * instead of sums; rank 0 prints it and every rank stops; the output is written only by rank 0
- * at the end (through a temporary file), so it is never touched by a failed job. */
+ * (mcrt_options.first_pass), so any rank can render any pass; a schedule (job.h: static.c,
+ * dynamic.c) says which. Rank 0 adds the passes' sums to its image one after another in pass
+ * order (mcrt_render_add_sums), whatever order they arrive in: exactly the sums a single process
+ * makes when it merges its passes as it renders them, so the image is bit-identical to one
+ * process's. MPI's own reductions would regroup the floating-point sums (anchor notes, section
+ * 4), so they are not used for the image. A rank that fails sends its message instead of sums;
+ * rank 0 prints it and every rank stops; the output is written only by rank 0 at the end
+ * (through a temporary file), so it is never touched by a failed job. */
 #include <errno.h>
 #include <limits.h>
 #include <mpi.h>
@@ -27,6 +23,7 @@
 
 #include "cli/args.h"
 #include "mcrt.h"
+#include "mpi/job.h"
 
 static const char usage[] =
     "usage: mpirun -np N mcrt-mpi [options] SCENE -o OUT\n"
@@ -38,22 +35,53 @@ static const char usage[] =
     "(per-ray ones), --sampler NAME, --all-features, --crop x0,y0,x1,y1, --passes N (default:\n"
     "one pass per rank without --time or --target-error), --time SECONDS, --target-error E,\n"
     "--state, --quiet, --help\n"
+    "  --schedule NAME   how passes are given to ranks (default: static):\n"
+    "%s"
     "\n"
     "exit status: 0 success; 1 a rank failed or the image could not be written; 2 bad input\n";
 
 /* mcrt's render options (MC_RENDER_ARGS), then mcrt-mpi's own. */
-enum { OPT_OUTPUT = RENDER_ARGS_END, OPT_QUIET, OPT_HELP, OPT_END };
+enum { OPT_OUTPUT = RENDER_ARGS_END, OPT_SCHEDULE, OPT_QUIET, OPT_HELP, OPT_END };
 static const struct arg_spec options[OPT_END + 1] = {
     MC_RENDER_ARGS(MC_RENDER_ARG_SPEC)
-    [OPT_OUTPUT] = {NULL, 'o', 1}, [OPT_QUIET] = {"quiet", 0, 0}, [OPT_HELP] = {"help", 0, 0},
-    [OPT_END] = {NULL, 0, 0}};
+    [OPT_OUTPUT] = {NULL, 'o', 1}, [OPT_SCHEDULE] = {"schedule", 0, 1},
+    [OPT_QUIET] = {"quiet", 0, 0}, [OPT_HELP] = {"help", 0, 0}, [OPT_END] = {NULL, 0, 0}};
 
-struct job {
-    const char *scene, *output;
-    mcrt_options o; /* the options of the whole render; each pass's are made from them */
-    int quiet;
-    int rank, size;
-};
+#define SCHEDULE_ENTRY(id, name, run, description) {name, run, description},
+static const struct schedule {
+    const char *name;
+    int (*run)(const struct job *j, const mcrt_scene *scene, struct outcome *out);
+    const char *description;
+} schedules[SCHEDULES_END] = {MC_MPI_SCHEDULES(SCHEDULE_ENTRY)};
+
+/* --help: the usage with the schedules' table. */
+static void print_usage(void)
+{
+    char lines[512] = "";
+    size_t used = 0;
+    int i;
+    for (i = 0; i < SCHEDULES_END; i++)
+        used += (size_t)snprintf(lines + used, used < sizeof lines ? sizeof lines - used : 0,
+                                 "      %-8s  %s\n", schedules[i].name, schedules[i].description);
+    printf(usage, lines);
+}
+
+/* --schedule NAME into *out; says which there are when NAME is none of them. */
+static int parse_schedule(const char *text, int *out)
+{
+    int i;
+    for (i = 0; i < SCHEDULES_END; i++)
+        if (strcmp(text, schedules[i].name) == 0) {
+            *out = i;
+            return 1;
+        }
+    fprintf(stderr, "mcrt-mpi: --schedule: expected");
+    for (i = 0; i < SCHEDULES_END; i++)
+        fprintf(stderr, "%s %s", i == 0 ? "" : i + 1 < SCHEDULES_END ? "," : " or",
+                schedules[i].name);
+    fprintf(stderr, ", got '%s'\n", text);
+    return 0;
+}
 
 /* Parse argv (the same on every rank) into j; -1 to go on, else the exit status. Only rank 0
  * prints. */
@@ -84,10 +112,14 @@ static int parse(int argc, char **argv, struct job *j)
             j->scene = v;
             break;
         case OPT_OUTPUT: j->output = v; break;
+        case OPT_SCHEDULE:
+            if (!parse_schedule(v, &j->schedule))
+                return STATUS_USAGE;
+            break;
         case OPT_QUIET: j->quiet = 1; break;
         case OPT_HELP:
             if (j->rank == 0)
-                fputs(usage, stdout);
+                print_usage();
             return STATUS_OK;
         }
     }
@@ -134,8 +166,6 @@ static char *broadcast_scene(const struct job *j, long *len)
     return text;
 }
 
-enum { MSG_LEN = 600 };
-
 /* Whether every rank has its scene; rank 0 prints the message of each that has not. Returns
  * the job's exit status, or -1 to go on. */
 static int gather_failures(const struct job *j, int status, const char *msg)
@@ -158,159 +188,28 @@ static int gather_failures(const struct job *j, int status, const char *msg)
     return code;
 }
 
-/* Render pass k into *out (a new render); 0, or the exit status with the reason in msg. */
-static int render_pass(const struct job *j, const mcrt_scene *scene, int k, mcrt_render **out,
-                       char *msg)
-{
-    mcrt_options o = j->o;
-    mcrt_status st;
-    size_t bytes = 0;
-    o.first_pass = k;
-    o.passes = 1;
-    o.time_budget = o.target_error = 0.0;
-    /* The accumulating render of rank 0 writes the state as mcrt would. */
-    o.save_state = j->o.save_state || j->o.time_budget > 0.0 || j->o.target_error > 0.0;
-    *out = mcrt_render_new(scene, &o);
-    if (!*out) {
-        snprintf(msg, MSG_LEN, "out of memory");
-        return STATUS_FAIL;
-    }
-    st = mcrt_render_run(*out);
-    if (st == MCRT_OK && !(mcrt_render_sums(*out, &bytes) && bytes <= INT_MAX)) {
-        snprintf(msg, MSG_LEN, "%s", bytes ? "the image is too large for one MPI message"
-                                           : "out of memory for the render's sums");
-        return STATUS_FAIL;
-    }
-    if (st == MCRT_OK)
-        return 0;
-    snprintf(msg, MSG_LEN, "%s", mcrt_render_error(*out));
-    return st == MCRT_ERR_INVALID ? STATUS_USAGE : STATUS_FAIL;
-}
-
-static double now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
-/* The rounds; rank 0's image in *acc. Returns the exit status, or -1 on success. */
-static int run(const struct job *j, const mcrt_scene *scene, mcrt_render **acc, int *done,
-               double *reduce_seconds)
-{
-    int round, stop = 0, code = -1, verdict[2];
-    /* The spp limit of the library (mcrt_options.passes) caps a render without --passes. */
-    int spp, limit;
-    double t0 = now(), last_round = 0.0;
-    char msg[MSG_LEN];
-    mcrt_scene_film(scene, NULL, NULL, &spp);
-    limit = j->o.passes ? j->o.passes : (1 << 24) / (j->o.spp ? j->o.spp : spp);
-    *done = 0;
-    *reduce_seconds = 0.0;
-    for (round = 0; !stop; round++) {
-        int k = round * j->size + j->rank, status = 0, r;
-        mcrt_render *mine = NULL;
-        double t = now(), tr;
-        msg[0] = '\0';
-        if (k < limit)
-            status = render_pass(j, scene, k, &mine, msg);
-        tr = now();
-        if (j->rank != 0) {
-            size_t bytes = 0;
-            const void *sums = status || k >= limit ? NULL : mcrt_render_sums(mine, &bytes);
-            MPI_Send(&status, 1, MPI_INT, 0, 0, MPI_COMM_WORLD);
-            if (status)
-                MPI_Send(msg, MSG_LEN, MPI_CHAR, 0, 1, MPI_COMM_WORLD);
-            else if (k < limit)
-                MPI_Send(sums, (int)bytes, MPI_BYTE, 0, 2, MPI_COMM_WORLD);
-        } else {
-            /* Rank 0: its own pass, then each rank's in rank order, which is pass order. */
-            void *buf = NULL;
-            size_t bytes = 0;
-            const void *own = status || k >= limit ? NULL : mcrt_render_sums(mine, &bytes);
-            if (status) {
-                fprintf(stderr, "mcrt-mpi: rank 0: %s\n", msg);
-                code = status;
-            } else if (k < limit && !*acc) {
-                *acc = mine; /* pass 0: the image starts as it */
-                mine = NULL;
-                ++*done;
-            } else if (k < limit && !stop)
-                mcrt_render_add_sums(*acc, own, bytes, k, 1) == MCRT_OK ? (void)++*done
-                                                                         : (void)(code = 1);
-            if (*acc && j->o.target_error > 0.0) {
-                mcrt_stats st;
-                mcrt_render_stats(*acc, &st, sizeof st);
-                stop |= st.est_relmse <= j->o.target_error;
-            }
-            for (r = 1; r < j->size; r++) {
-                int their = 0, kr = round * j->size + r, count;
-                MPI_Status probe;
-                MPI_Recv(&their, 1, MPI_INT, r, 0, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-                if (their) {
-                    MPI_Recv(msg, MSG_LEN, MPI_CHAR, r, 1, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-                    fprintf(stderr, "mcrt-mpi: rank %d: %s\n", r, msg);
-                    code = code > their ? code : their;
-                } else if (kr < limit) {
-                    /* The size from the message: rank 0's own pass may have failed. */
-                    MPI_Probe(r, 2, MPI_COMM_WORLD, &probe);
-                    MPI_Get_count(&probe, MPI_BYTE, &count);
-                    if (!buf && !(buf = malloc((size_t)count)))
-                        MPI_Abort(MPI_COMM_WORLD, 1); /* out of memory: nothing to do but stop */
-                    bytes = (size_t)count;
-                    MPI_Recv(buf, count, MPI_BYTE, r, 2, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-                    /* Passes after the one that met the target are dropped, as one process
-                     * would not have rendered them. */
-                    if (code < 0 && !stop) {
-                        if (mcrt_render_add_sums(*acc, buf, bytes, kr, 1) != MCRT_OK)
-                            code = 1;
-                        else
-                            ++*done;
-                    }
-                    if (code < 0 && !stop && j->o.target_error > 0.0) {
-                        mcrt_stats st;
-                        mcrt_render_stats(*acc, &st, sizeof st);
-                        stop |= st.est_relmse <= j->o.target_error;
-                    }
-                }
-            }
-            free(buf);
-            last_round = now() - t;
-            stop |= code >= 0 || *done >= limit || (round + 1) * j->size >= limit;
-            /* As mcrt: no round that, as long as the last, would end after the budget. */
-            if (j->o.time_budget > 0.0 && now() - t0 + last_round > j->o.time_budget)
-                stop = 1;
-            if (!j->quiet && isatty(STDERR_FILENO))
-                fprintf(stderr, "\rmcrt-mpi: %d passes, %.1f s ", *done, now() - t0);
-        }
-        mcrt_render_free(mine);
-        verdict[0] = stop;
-        verdict[1] = code;
-        MPI_Bcast(verdict, 2, MPI_INT, 0, MPI_COMM_WORLD); /* the round's one collective */
-        stop = verdict[0];
-        code = verdict[1];
-        *reduce_seconds += now() - tr;
-    }
-    if (j->rank == 0 && !j->quiet && isatty(STDERR_FILENO))
-        fprintf(stderr, "\n");
-    return code;
-}
-
 int main(int argc, char **argv)
 {
     struct job j;
     mcrt_scene *scene = NULL;
-    mcrt_render *acc = NULL;
-    char *text;
+    struct outcome out;
+    char *text, ranks[256] = "";
     long len;
-    int code, done = 0;
-    double t0, reduce = 0.0;
+    int code, provided, r;
+    double t0;
     memset(&j, 0, sizeof j);
-    MPI_Init(&argc, &argv);
+    memset(&out, 0, sizeof out);
+    /* The dynamic schedule's rank 0 renders in a second thread, which never calls MPI. */
+    MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
     MPI_Comm_rank(MPI_COMM_WORLD, &j.rank);
     MPI_Comm_size(MPI_COMM_WORLD, &j.size);
-    t0 = now();
+    t0 = mc_mpi_now();
     code = parse(argc, argv, &j);
+    if (code < 0 && j.schedule == SCHEDULE_DYNAMIC && provided < MPI_THREAD_FUNNELED) {
+        fprintf(stderr, "mcrt-mpi: --schedule dynamic needs threads, which this MPI refuses "
+                        "(MPI_THREAD_FUNNELED)\n"); /* printed by rank 0 only (parse) */
+        code = STATUS_FAIL;
+    }
     if (code < 0 && !(text = broadcast_scene(&j, &len)))
         code = STATUS_USAGE;
     if (code < 0) {
@@ -322,24 +221,34 @@ int main(int argc, char **argv)
                                                                              : STATUS_USAGE,
                                scene ? mcrt_scene_error(scene) : "out of memory");
     }
-    if (code < 0)
-        code = run(&j, scene, &acc, &done, &reduce);
+    if (code < 0 && !(out.by_rank = calloc((size_t)j.size, sizeof *out.by_rank)))
+        MPI_Abort(MPI_COMM_WORLD, 1); /* out of memory: nothing to do but stop */
+    if (code < 0) {
+        code = schedules[j.schedule].run(&j, scene, &out);
+        if (j.rank == 0 && !j.quiet && isatty(STDERR_FILENO))
+            fprintf(stderr, "\n"); /* after the progress line */
+    }
     if (code < 0 && j.rank == 0) {
         mcrt_stats st;
         code = STATUS_OK;
-        if (mcrt_render_save(acc, j.output) != MCRT_OK) {
-            fprintf(stderr, "mcrt-mpi: %s\n", mcrt_render_error(acc));
+        if (mcrt_render_save(out.acc, j.output) != MCRT_OK) {
+            fprintf(stderr, "mcrt-mpi: %s\n", mcrt_render_error(out.acc));
             code = STATUS_FAIL;
         } else if (!j.quiet) {
-            mcrt_render_stats(acc, &st, sizeof st);
+            /* The passes each rank rendered, "3+2+2": the load balance. */
+            for (r = 0; r < j.size && strlen(ranks) + 16 < sizeof ranks; r++)
+                sprintf(ranks + strlen(ranks), "%s%d", r ? "+" : "", out.by_rank[r]);
+            mcrt_render_stats(out.acc, &st, sizeof st);
             fprintf(stderr,
-                    "%s: %dx%d, %d spp, %d passes on %d rank%s, %.2f s (%.3f s in rank 0's "
-                    "exchanges), est. relMSE %.3g\n",
-                    j.output, st.width, st.height, st.spp, done, j.size, j.size == 1 ? "" : "s",
-                    now() - t0, reduce, st.est_relmse);
+                    "%s: %dx%d, %d spp, %d passes on %d rank%s (%s%s, %s), %.2f s (%.3f s in "
+                    "rank 0's exchanges), est. relMSE %.3g\n",
+                    j.output, st.width, st.height, st.spp, out.done, j.size,
+                    j.size == 1 ? "" : "s", ranks, r < j.size ? "+..." : "",
+                    schedules[j.schedule].name, mc_mpi_now() - t0, out.exchange, st.est_relmse);
         }
     }
-    mcrt_render_free(acc);
+    free(out.by_rank);
+    mcrt_render_free(out.acc);
     mcrt_scene_free(scene);
     MPI_Finalize();
     return code < 0 ? STATUS_OK : code;
