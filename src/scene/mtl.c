@@ -29,7 +29,6 @@ static const unsigned char statement_how[MTL_STATEMENT_COUNT] = {MC_MTL_STATEMEN
 static const char *ignored_why(enum mtl_statement st)
 {
     switch (st) {
-    case MTL_map_Kd: return "colour textures are not read from MTL files yet";
     case MTL_bump: case MTL_map_bump: case MTL_norm: case MTL_disp:
         return "mcrt has no bump, normal or displacement maps";
     case MTL_map_d: case MTL_decal: return "mcrt has no cut-out or decal textures";
@@ -54,6 +53,7 @@ struct mtl_reader {
     struct mtl_library *lib;
     struct scene *warn;
     unsigned warned[(MTL_STATEMENT_COUNT + 31) / 32];
+    int map_warned;            /* a texture map option was ignored (said once per file) */
     struct pending cur;
 };
 
@@ -98,7 +98,8 @@ static mcrt_status finish_material(struct mtl_reader *m)
     int specular = v3_max_comp(c->ks) > 0.0f && !(given(c, MTL_illum) && c->illum < 2);
     if (!c->open)
         return MCRT_OK;
-    c->open = 0;
+    if (e->map_kd && !given(c, MTL_Kd))
+        c->kd = v3s(1.0f); /* the image alone is the colour */
     set_name(mt->name, sizeof mt->name, base ? base + 1 : m->r.path, e->name);
     mt->ior = 1.5f;
     mt->alpha = 0.0f;
@@ -129,6 +130,15 @@ static mcrt_status finish_material(struct mtl_reader *m)
     if (mt->kind->ops->complete && !mt->kind->ops->complete(mt, keys, &problem))
         return mc_fail(m->r.d, MCRT_ERR_PARSE, "%s:%d:%d: material '%s': %s", m->r.path, e->line,
                        e->col, e->name, problem.what);
+    if (e->map_kd && !(mt->kind->keys & MC_KEY_BIT(MC_KEY_TEXTURE)) &&
+        mc_scene_warn(m->warn, "%s: warning: material '%s' is %s, which takes no colour texture: "
+                      "its map_Kd is ignored", e->map_origin, e->name, mt->kind->name) < 0)
+        return nomem(m);
+    if (!(mt->kind->keys & MC_KEY_BIT(MC_KEY_TEXTURE))) {
+        free(e->map_kd);
+        free(e->map_origin);
+        e->map_kd = e->map_origin = NULL;
+    }
     e->emit = c->ke;
     e->scene_index = -1;
     if (m->lib->n == m->lib->cap) {
@@ -139,7 +149,8 @@ static mcrt_status finish_material(struct mtl_reader *m)
         m->lib->e = ne;
         m->lib->cap = ncap;
     }
-    m->lib->e[m->lib->n++] = *e;
+    m->lib->e[m->lib->n++] = *e; /* the entry's strings now the library's */
+    c->open = 0;
     return MCRT_OK;
 }
 
@@ -248,6 +259,72 @@ static mcrt_status read_real(struct mtl_reader *m, const char *kw, const char *p
     return MCRT_OK;
 }
 
+/* The options a texture map statement may take before its file name, with how many arguments
+ * each (at most; -o, -s and -t take 1 to 3 numbers), after the MTL chapter's "Texture map
+ * options". mcrt reads none of them: each is skipped, and the first in a file warned about. */
+static const struct {
+    const char *name;
+    int args;
+} map_options[] = {{"-blendu", 1}, {"-blendv", 1}, {"-bm", 1}, {"-boost", 1}, {"-cc", 1},
+                   {"-clamp", 1}, {"-imfchan", 1}, {"-mm", 2}, {"-o", 3}, {"-s", 3}, {"-t", 3},
+                   {"-texres", 1}, {"-type", 1}};
+
+/* map_Kd [-option args...] FILE: the file (the rest of the line, read as a name: mc_wf_name_end),
+ * relative to the MTL file's folder. */
+static mcrt_status read_map(struct mtl_reader *m, const char *kw, const char *p, const char *le)
+{
+    struct mtl_entry *e = &m->cur.entry;
+    const char *q, *slash = strrchr(m->r.path, '/');
+    size_t nd = slash ? (size_t)(slash + 1 - m->r.path) : 0, i, n;
+    char buf[48], origin[600];
+    mcrt_status st;
+    for (p = mc_wf_skip_blank(p, le); p < le && *p == '-'; p = mc_wf_skip_blank(p, le)) {
+        int args;
+        q = mc_wf_token_end(p, le);
+        for (i = 0; i < sizeof map_options / sizeof map_options[0]; i++)
+            if (strlen(map_options[i].name) == (size_t)(q - p) && !memcmp(map_options[i].name, p, (size_t)(q - p)))
+                break;
+        if (i == sizeof map_options / sizeof map_options[0])
+            return mc_wf_fail(&m->r, p, "unknown map option '%s'", mc_wf_show(p, q, buf));
+        if (!m->map_warned) {
+            m->map_warned = 1;
+            if (mc_scene_warn(m->warn, "%s:%d:%d: warning: texture map options such as '%s' are "
+                              "ignored (later ones in this file are not reported)", m->r.path,
+                              m->r.line, (int)(p - m->r.line_start) + 1, map_options[i].name) < 0)
+                return nomem(m);
+        }
+        /* Its arguments: numbers or on/off words; -o, -s and -t stop at the first that is not a
+         * number (the file name). */
+        for (p = q, args = 0; args < map_options[i].args; args++) {
+            double x;
+            const char *a = mc_wf_skip_blank(p, le);
+            q = mc_wf_token_end(a, le);
+            if (a == q || (map_options[i].args == 3 && args > 0 &&
+                           (*a < '0' || *a > '9') && *a != '-' && *a != '.' && *a != '+'))
+                break;
+            if (map_options[i].args == 3 && (st = mc_wf_number(&m->r, a, q, &x)))
+                return st;
+            p = q;
+        }
+    }
+    q = mc_wf_name_end(p, le);
+    if (p == q)
+        return mc_wf_fail(&m->r, kw, "'map_Kd' needs an image file name");
+    free(e->map_kd); /* a second map_Kd in one material replaces the first */
+    free(e->map_origin);
+    n = (size_t)(q - p);
+    snprintf(origin, sizeof origin, "%s:%d:%d", m->r.path, m->r.line, (int)(p - m->r.line_start) + 1);
+    e->map_kd = mc_malloc(nd + n + 1);
+    e->map_origin = mc_malloc(strlen(origin) + 1);
+    if (!e->map_kd || !e->map_origin)
+        return nomem(m);
+    memcpy(e->map_kd, m->r.path, nd);
+    memcpy(e->map_kd + nd, p, n);
+    e->map_kd[nd + n] = '\0';
+    strcpy(e->map_origin, origin);
+    return MCRT_OK;
+}
+
 static mcrt_status read_statement(struct mtl_reader *m, enum mtl_statement s, const char *kw,
                                   const char *p, const char *le)
 {
@@ -260,6 +337,7 @@ static mcrt_status read_statement(struct mtl_reader *m, enum mtl_statement s, co
     case MTL_Ks: return read_colour(m, kw, p, le, 1, &c->ks);
     case MTL_Tf: return read_colour(m, kw, p, le, 1, &c->tf);
     case MTL_Ke: return read_colour(m, kw, p, le, 0, &c->ke);
+    case MTL_map_Kd: return read_map(m, kw, p, le);
     case MTL_Ns: return read_real(m, kw, p, le, 0.0, 0, INFINITY, "must not be negative", &c->ns);
     case MTL_Ni: return read_real(m, kw, p, le, 0.0, 1, INFINITY, "must be positive", &c->ni);
     case MTL_d: return read_real(m, kw, p, le, 0.0, 0, 1.0, "must be from 0 to 1", &c->d);
@@ -334,6 +412,10 @@ mcrt_status mc_mtl_load(struct mtl_library *lib, const char *path, const char *o
     st = mc_wf_lines(&m.r, buf, len, read_line, &m);
     if (!st)
         st = finish_material(&m);
+    if (m.cur.open) { /* a material not finished owns its strings still */
+        free(m.cur.entry.map_kd);
+        free(m.cur.entry.map_origin);
+    }
     free(buf);
     return st;
 }
@@ -347,11 +429,31 @@ int mc_mtl_find(const struct mtl_library *lib, const char *name, size_t len)
     return -1;
 }
 
+int mc_mtl_use(struct mtl_library *lib, size_t i, struct scene *s)
+{
+    struct mtl_entry *e = &lib->e[i];
+    if (e->scene_index >= 0)
+        return e->scene_index;
+    if (e->map_kd) {
+        const char *base = strrchr(e->map_kd, '/');
+        int k = mc_scene_image_texture(s, base ? base + 1 : e->map_kd, e->map_kd, e->map_origin);
+        if (k < 0)
+            return -1;
+        e->m.texture = k + 1;
+    }
+    return e->scene_index = mc_scene_add_material(s, &e->m);
+}
+
 void mc_mtl_free(struct mtl_library *lib)
 {
     while (lib->npaths > 0)
         free(lib->paths[--lib->npaths]);
     free(lib->paths);
+    while (lib->n > 0) {
+        lib->n--;
+        free(lib->e[lib->n].map_kd);
+        free(lib->e[lib->n].map_origin);
+    }
     free(lib->e);
     memset(lib, 0, sizeof *lib);
 }

@@ -5,8 +5,10 @@
  *                                            albedo Kd, coat index Ni when above 1 (else 1.5);
  *                                            both of GGX α from Ns (mtl.c)
  *   else                                     diffuse of albedo Kd
- * and Ke is the emitted radiance. Kd, Ks and Ke are 0 when absent (as tinyobjloader reads
- * them), so a material of Ke alone is a black emitter. */
+ * and Ke is the emitted radiance; map_Kd is an image texture multiplying Kd (of diffuse and
+ * plastic materials). Kd, Ks and Ke are 0 when absent (as tinyobjloader reads them), so a
+ * material of Ke alone is a black emitter, but Kd is 1 beside a map_Kd, whose image is then the
+ * colour. */
 #ifndef MCRT_MTL_H
 #define MCRT_MTL_H
 
@@ -22,9 +24,9 @@ struct scene;
  * reported as a warning with the reason mtl.c gives). Any other statement is an error. */
 #define MC_MTL_STATEMENTS(X)                                                                    \
     X(newmtl, READ) X(Kd, READ) X(Ks, READ) X(Ke, READ) X(Ns, READ) X(Ni, READ) X(d, READ)      \
-    X(Tr, READ) X(Tf, READ) X(illum, READ)                                                      \
+    X(Tr, READ) X(Tf, READ) X(illum, READ) X(map_Kd, READ)                                      \
     X(Ka, QUIET) X(map_Ka, QUIET)                                                               \
-    X(map_Kd, WARN) X(map_Ks, WARN) X(map_Ns, WARN) X(map_d, WARN) X(map_Ke, WARN)              \
+    X(map_Ks, WARN) X(map_Ns, WARN) X(map_d, WARN) X(map_Ke, WARN)              \
     X(map_bump, WARN) X(bump, WARN) X(disp, WARN) X(decal, WARN) X(norm, WARN) X(refl, WARN)    \
     X(sharpness, WARN) X(map_aat, WARN) X(Pr, WARN) X(Pm, WARN) X(Ps, WARN) X(Pc, WARN)         \
     X(Pcr, WARN) X(aniso, WARN) X(anisor, WARN) X(map_Pr, WARN) X(map_Pm, WARN) X(map_Ps, WARN)
@@ -42,6 +44,8 @@ struct mtl_entry {
     int line, col;             /* of its name after newmtl */
     struct material m;         /* named "FILE:NAME", which no scene word can name */
     vec3 emit;                 /* Ke */
+    char *map_kd;              /* map_Kd's image file (beside the MTL file) or NULL (owned) */
+    char *map_origin;          /* "FILE:LINE:COL" of its name, for the image's messages (owned) */
     int scene_index;           /* the scene's material, -1 until a face uses it (obj.c) */
 };
 
@@ -57,9 +61,12 @@ struct mtl_library {
  * including a material defined twice in the files read (MCRT_ERR_PARSE), "origin: cannot
  * open/read 'path': reason" (MCRT_ERR_IO), MCRT_ERR_NOMEM. Warnings about ignored statements go
  * to warn (mc_scene_warn). On failure lib keeps what it held and what was read, for
- * mc_mtl_free. */
+ * mc_mtl_free. A map_Kd's image is only named (map_kd): mc_mtl_use makes it a texture. */
 mcrt_status mc_mtl_load(struct mtl_library *lib, const char *path, const char *origin,
                         struct scene *warn, mc_diag *d);
+/* The scene's material for entry i of lib, added to s (with its map_Kd's texture) the first time:
+ * its index, or -1 when out of memory. */
+int mc_mtl_use(struct mtl_library *lib, size_t i, struct scene *s);
 /* The entry named [name, name + len), or -1. */
 int mc_mtl_find(const struct mtl_library *lib, const char *name, size_t len);
 void mc_mtl_free(struct mtl_library *lib);

@@ -336,10 +336,9 @@ static mcrt_status read_usemtl(struct reader *r, const char *kw, const char *le)
         return mc_wf_fail(&r->r, p, "unknown material '%s' (not in '%s'%s)", mc_wf_show(p, q, buf),
                           r->lib.paths[0], r->lib.npaths > 1 ? " and the other mtllib files" : "");
     }
-    e = &r->lib.e[i];
-    if (e->scene_index < 0 && (e->scene_index = mc_scene_add_material(r->s, &e->m)) < 0)
+    if ((r->proto.material = mc_mtl_use(&r->lib, (size_t)i, r->s)) < 0)
         return nomem(r);
-    r->proto.material = e->scene_index;
+    e = &r->lib.e[i];
     if (r->m->mtl_emit)
         r->proto.emit = e->emit;
     return MCRT_OK;

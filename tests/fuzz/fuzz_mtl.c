@@ -1,7 +1,8 @@
 /* fuzz_mtl.c: libFuzzer harness for the MTL reader: the input is an MTL file's bytes, read with
- * mc_mtl_load and, when it loads, each material put on a triangle of a scene with its Ke, and the
- * scene prepared (the materials' tables, the area lights of the emitting ones), so that what the
- * reader lets through reaches the materials' own preparation too.
+ * mc_mtl_load and, when it loads, each material put on a triangle of a scene (mc_mtl_use, with
+ * its map_Kd's texture) with its Ke, and the scene prepared (the materials' tables, the area
+ * lights of the emitting ones), so that what the reader lets through reaches the materials' own
+ * preparation too.
  * Built by `make fuzz` with clang -fsanitize=fuzzer; tests/fuzz/replay.c runs it on the corpus. */
 #include <stdint.h>
 #include <string.h>
@@ -31,7 +32,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             t.kind = PRIM_TRIANGLE;
             t.light = -1;
             t.normals = -1;
-            t.material = mc_scene_add_material(&s, &lib.e[i].m);
+            t.material = mc_mtl_use(&lib, i, &s);
             t.emit = lib.e[i].emit;
             t.p[0] = v3((float)i, 0.0f, 0.0f);
             t.p[1] = v3((float)i + 1.0f, 0.0f, 0.0f);

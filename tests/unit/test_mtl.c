@@ -2,12 +2,14 @@
  * each kind, the Ns -> alpha formula, the scene's material and emit overriding the file's, the
  * warnings (once each), and two renders with a closed form: a closed cube of black walls emitting
  * Ke, seen from inside, is Ke in every pixel exactly; walls of albedo rho emitting Ke give
- * Ke / (1 - rho) everywhere (the enclosure's radiance L = Ke + rho L), within the noise. */
+ * Ke / (1 - rho) everywhere (the enclosure's radiance L = Ke + rho L), within the noise; a
+ * map_Kd image multiplies Kd, exactly, on a face under the white sky. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
+#include "io/image.h"
 #include "render_util.h"
 #include "scene/mtl.h"
 #include "scene/scene.h"
@@ -247,6 +249,67 @@ static void test_emitting_box(void)
     }
 }
 
+/* map_Kd: an image texture times Kd. Two quads side by side filling the view under the default
+ * white sky (radiance 1), traced by BSDF sampling alone: a diffuse surface of albedo rho then
+ * returns rho in every sample exactly (its weight f cos / pdf is rho, and the bounce meets the
+ * sky), so the left half is Kd x the 1x1 image's colour and the right half its own Kd. */
+static void test_map_kd(void)
+{
+    static const float texel[3] = {0.3f, 0.5f, 0.7f};
+    char path[160], text[512];
+    mc_diag d;
+    mcrt_scene *sc;
+    int w = 0, h = 0, x, y, c, bad = 0;
+    float *px;
+    struct t_render_opts o = {4, 2, 0, 3, NULL, NULL};
+    snprintf(path, sizeof path, "%s/texel.pfm", tmpdir);
+    T_CHECK(mc_image_write(path, texel, 1, 1, &d) == MCRT_OK, "%s", d.msg);
+    write_in_tmp("tex.mtl", "newmtl a\nKd 0.5\nmap_Kd -s 2 2 1 -clamp on -bm 1 texel.pfm\n"
+                            "newmtl b\nKd 0.2 0.4 0.6\n"
+                            "newmtl unused\nKd 1\nmap_Kd -o 0.5 other.pfm\n"
+                            "newmtl gone\nmap_Kd missing.pfm\n");
+    write_in_tmp("tex.obj", "mtllib tex.mtl\nv -2 -2 0\nv 0 -2 0\nv 0 2 0\nv -2 2 0\nv 2 -2 0\nv 2 2 0\n"
+                            "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                            "usemtl a\nf 1/1 2/2 3/3 4/4\nusemtl b\nf 2 5 6 3\n");
+    /* unused's map_Kd names a file that is absent, but no face uses it: its image is not read. */
+    snprintf(text, sizeof text, "film { width 8 height 8 }\nintegrator { strategy bsdf }\n"
+                                "mesh { file \"%s/tex.obj\" }\n", tmpdir);
+    px = t_render(text, &o, &w, &h, NULL);
+    if (px && w == 8 && h == 8) {
+        for (y = 0; y < 8; y++)
+            for (x = 0; x < 8; x++)
+                for (c = 0; c < 3; c++) {
+                    double want = x < 4 ? 0.5 * texel[c] : 0.2 * (c + 1);
+                    bad += fabs(px[3 * (8 * y + x) + c] - want) > 1e-5 * want;
+                }
+        T_CHECK(bad == 0, "%d channels off: left %g %g %g, right %g %g %g", bad, px[0], px[1],
+                px[2], px[21], px[22], px[23]);
+    } else {
+        T_CHECK(0, "the textured mesh did not render");
+    }
+    free(px);
+    sc = load("mesh { file \"@/tex.obj\" }");
+    if (sc) {
+        const char *wn = mcrt_scene_warnings(sc);
+        T_CHECK(strstr(wn, "/tex.mtl:3:8: warning: texture map options such as '-s' are ignored")
+                    && !strstr(strchr(wn, '\n') + 1, "map options"),
+                "map options warned once: %s", wn);
+        mcrt_scene_free(sc);
+    }
+    /* A face of material gone: its missing image is an error at the file name in the MTL file. */
+    write_in_tmp("tex.obj", "mtllib tex.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl gone\nf 1 2 3\n");
+    if ((sc = mcrt_scene_new())) {
+        char want[200];
+        snprintf(text, sizeof text, "mesh { file \"%s/tex.obj\" }\n", tmpdir);
+        snprintf(want, sizeof want, "%s/tex.mtl:10:8: cannot read '%s/missing.pfm'", tmpdir, tmpdir);
+        T_CHECK(mcrt_scene_load_string(sc, text, strlen(text), "t.mcrt") == MCRT_ERR_IO
+                    && !strncmp(mcrt_scene_error(sc), want, strlen(want)),
+                "missing map_Kd image: %s", mcrt_scene_error(sc));
+        mcrt_scene_free(sc);
+    }
+    remove(path);
+}
+
 int main(void)
 {
     snprintf(tmpdir, sizeof tmpdir, "/tmp/mcrt_mtl_XXXXXX");
@@ -257,9 +320,10 @@ int main(void)
     test_mapping();
     test_faces_and_overrides();
     test_emitting_box();
+    test_map_kd();
     {
         static const char *const files[] = {"kinds.mtl", "halves.mtl", "halves.obj", "none.obj",
-                                            "box.mtl", "box.obj"};
+                                            "box.mtl", "box.obj", "tex.mtl", "tex.obj"};
         char path[160];
         size_t i;
         for (i = 0; i < sizeof files / sizeof files[0]; i++) {
