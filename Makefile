@@ -79,7 +79,7 @@ UNIT_BIN := $(UNIT_SRC:tests/unit/%.c=$(O)/tests/%) $(BVH_VARIANTS:%=$(O)/tests/
 TOOL_SRC := $(wildcard tests/tools/*.c)
 TOOL_BIN := $(TOOL_SRC:tests/tools/%.c=$(O)/tests/%)
 
-.PHONY: all run test test-build check tsan fuzz bench bench-error bench-denoise install uninstall clean setup ref plots
+.PHONY: all run test test-build check tsan fuzz bench bench-error bench-denoise denoise-figures install uninstall clean setup ref plots
 all: $(O)/mcrt $(O)/libmcrt.a $(if $(HAVE_MPI),$(O)/mcrt-mpi)
 
 # $(O)/config.mk, the CONFIG above, is written while this Makefile is read, and only when its text
@@ -254,6 +254,12 @@ bench-error: all
 # The denoiser's error reduction at 16 and 64 spp, its own error estimate and its time (issue 16).
 bench-denoise: all
 	MCRT=$(O)/mcrt sh tests/tools/denoise_bench.sh
+
+# The README's denoiser figures, its convergence plot and crops of scenes/cornell.mcrt, into
+# $(O)/figures (tests/tools/denoise_figures.sh; the copies in docs/images come from it). Several
+# minutes: the reference is a 4096 spp render. Not a test.
+denoise-figures: all $(O)/tests/crops
+	O=$(O) sh tests/tools/denoise_figures.sh
 
 # Convergence plots (relMSE against seconds, three samplers) for every scene, into $(O)/plots:
 # mcrt converge, gnuplot. Several minutes: each reference is a 256 spp render. Not a test.

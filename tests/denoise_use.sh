@@ -7,10 +7,13 @@
 #     the reference is a raw render (a denoised one would carry the denoiser's bias into both
 #     curves); the plot's script selects exactly each value's rows; a value other than off or on
 #     is refused with exit status 2.
-#   - --denoise with every sampler, with --crop (against the reference's same crop), with
+#   - --denoise with every sampler, every per-ray integrator, with --crop (against the reference's same crop), with
 #     --passes, with --time and with --adaptive: the denoised image's relMSE against the
 #     converge test's reference (256 spp, another seed) is below the raw image's, its mean
-#     within 1% of the raw's (the issue's energy target), and its est_relmse below the raw's;
+#     within 1% of the raw's (the issue's energy target) or, where the raw mean's own noise is
+#     larger (bsdf sampling's fireflies: 3 standard errors of it were 1.7% of the mean, and the
+#     shift measured 1.4, 1.1, -0.1, -1.3% for seeds 1 to 4, of both signs), within 3 standard
+#     errors of it, and its est_relmse below the raw's;
 #     the raw layer of the --passes render is the image of the same render without --denoise,
 #     and `mcrt denoise` of the --time render's EXR (which holds the render state too) gives its
 #     image again.
@@ -70,36 +73,52 @@ else
     fail "converge denoise=maybe" "exit $code, '$(cat "$tmp/err")'"
 fi
 
-# mode NAME OPTIONS...: render at seed 1 with --denoise, and the same without into raw.pfm, and
-# check the three claims above against $tmp/c-ref.pfm (or $ref when set).
+# mode NAME OPTIONS...: render at seed 1 with --denoise, and the same without into raw.exr (with
+# its variance layer), and check the claims above against $tmp/c-ref.pfm (or $ref when set).
 mode() {
     name=$1
     shift
     "$MCRT" --quiet --seed 1 --denoise -o "$tmp/m.exr" --stats "$tmp/m.json" "$@" "$tmp/c.mcrt" &&
-        "$MCRT" --quiet --seed 1 -o "$tmp/raw.pfm" "$@" "$tmp/c.mcrt" || {
+        "$MCRT" --quiet --seed 1 --aov variance -o "$tmp/raw.exr" "$@" "$tmp/c.mcrt" &&
+        layer "$tmp/raw.exr" variance "$tmp/var.pfm" || {
         fail "$name" "a render failed"
         return
     }
     r=${ref:-$tmp/c-ref.pfm}
-    set -- "$(diff_num relMSE "$tmp/m.exr" "$r")" "$(diff_num relMSE "$tmp/raw.pfm" "$r")" \
-        "$(diff_num bias "$tmp/m.exr" "$tmp/raw.pfm")" "$(diff_num bias "$tmp/raw.pfm" "$tmp/black.pfm")" \
-        "$(json_num "$tmp/m.json" est_relmse)" "$(json_num "$tmp/m.json" est_relmse_raw)"
-    if echo "$@" | awk '{ exit !($1 < $2 && $3 < 0.01 * $4 && -$3 < 0.01 * $4 && $5 < $6) }'; then
-        ok "$name: denoised relMSE $1 < raw $2, mean shift $3 of $4, est. $5 < raw $6"
+    set -- "$(diff_num relMSE "$tmp/m.exr" "$r")" "$(diff_num relMSE "$tmp/raw.exr" "$r")" \
+        "$(diff_num bias "$tmp/m.exr" "$tmp/raw.exr")" "$(diff_num bias "$tmp/raw.exr" "$tmp/black.pfm")" \
+        "$(json_num "$tmp/m.json" est_relmse)" "$(json_num "$tmp/m.json" est_relmse_raw)" \
+        "$(diff_num bias "$tmp/var.pfm" "$tmp/black.pfm")"
+    # The shift allowed: 1% of the mean, or 3 standard errors of the raw image's mean when that
+    # is larger (its pixels independent: sqrt(mean variance / (pixels x 3 channels))).
+    tol=$(echo "$4 $7 $W $H" | awk '{ e = 3 * sqrt($2 / ($3 * $4 * 3)); print (e > 0.01 * $1 ? e : 0.01 * $1) }')
+    if echo "$@ $tol" | awk '{ exit !($1 < $2 && $3 < $8 && -$3 < $8 && $5 < $6) }'; then
+        ok "$name: denoised relMSE $1 < raw $2, mean shift $3 of $4 (at most $tol), est. $5 < raw $6"
     else
-        fail "$name" "denoised relMSE $1 vs raw $2, mean shift $3 of $4, est. $5 vs raw $6"
+        fail "$name" "denoised relMSE $1 vs raw $2, mean shift $3 of $4 (at most $tol), est. $5 vs raw $6"
     fi
 }
-printf 'PF\n48 48\n-1.0\n' >"$tmp/black.pfm"
-head -c $((48 * 48 * 12)) /dev/zero >>"$tmp/black.pfm"
+# black W H: $tmp/black.pfm, a black W x H image, to read an image's mean as its bias against
+# it; W and H the size of the renders that follow.
+black() {
+    W=$1 H=$2
+    printf 'PF\n%d %d\n-1.0\n' "$W" "$H" >"$tmp/black.pfm"
+    head -c $((W * H * 12)) /dev/zero >>"$tmp/black.pfm"
+}
+# layer EXR NAME OUT: the layer NAME of EXR, a W x H image, as the image OUT (tests/tools/crops.c).
+layer() { "$O/tests/crops" "$3" "0,0,$W,$H" 1 "$1:$2"; }
+black 48 48
 for sampler in $("$MCRT" --list sampler); do
     mode "--denoise --sampler $sampler" --spp 16 --sampler "$sampler"
 done
+# Every per-ray integrator (sppm is refused, below); direct's bias (no indirect light) is in the
+# raw and the denoised relMSE alike.
+for integrator in $("$MCRT" --list integrator | cut -f 1 | grep -vx sppm); do
+    mode "--denoise --integrator $integrator" --spp 16 --integrator "$integrator"
+done
 mode "--denoise --passes 4" --spp 4 --passes 4
-# layer EXR NAME OUT: the layer NAME of EXR as the image OUT (tests/tools/crops.c).
-layer() { "$O/tests/crops" "$3" 0,0,48,48 1 "$1:$2"; }
 if layer "$tmp/m.exr" raw "$tmp/m-raw.pfm" &&
-    [ "$(diff_num MSE "$tmp/m-raw.pfm" "$tmp/raw.pfm")" = 0 ]; then
+    [ "$(diff_num MSE "$tmp/m-raw.pfm" "$tmp/raw.exr")" = 0 ]; then
     ok "--denoise --passes 4: its raw layer is the render without --denoise"
 else
     fail "--denoise --passes 4" "its raw layer differs from the render without --denoise"
@@ -129,8 +148,7 @@ else
 fi
 # --crop: against the reference's own crop (the same pixels as in the whole image).
 "$MCRT" --quiet --spp 256 --seed 1000003 --crop 8,12,40,36 -o "$tmp/ref-crop.pfm" "$tmp/c.mcrt"
-printf 'PF\n32 24\n-1.0\n' >"$tmp/black.pfm"
-head -c $((32 * 24 * 12)) /dev/zero >>"$tmp/black.pfm"
+black 32 24
 ref=$tmp/ref-crop.pfm mode "--denoise --crop 8,12,40,36" --spp 16 --crop 8,12,40,36
 
 # refused NAME WANT OPTIONS...: exit 2, the message WANT, the output untouched.
