@@ -70,6 +70,15 @@ refuse "glass with an area light, direct lighting" "mirror or glass with area li
 refuse "a texture" "r.mcrt:1:48: .*textured material" \
     "texture t { checker 0 1 } material m { diffuse texture t } sphere { material m } $lit"
 refuse "max_depth 0" "max_depth 0" "integrator { max_depth 0 } sphere { } $lit"
+refuse "a textured sphere" "texture of material 'm'.*quad" \
+    "texture c { checker 0 1 } material m { diffuse texture c } sphere { material m } $lit"
+refuse "a textured mirror" "texture of material 'm'.*diffuse" \
+    "texture c { checker 0 1 } material m { mirror texture c } quad { material m } $lit"
+printf 'film { width 2 height 2 spp 1 } quad { corner -9 -9 0 edge1 18 0 0 edge2 0 18 0 } %s\n' \
+    "$lit" >"$tmp/pfm.mcrt"
+"$MCRT" --quiet -o "$tmp/t.pfm" "$tmp/pfm.mcrt" # a PFM of values in [0, 1]: a dimly lit wall
+refuse "a PFM texture" "PNG and EXR" \
+    "texture c { image \"$tmp/t.pfm\" } material m { diffuse texture c } quad { material m } $lit"
 "$MCRT" pov "$tmp/missing.mcrt" -o "$tmp/m.pov" 2>"$tmp/err"
 rc=$?
 if [ "$rc" -eq 2 ] && [ ! -e "$tmp/m.pov" ]; then ok "a missing scene exits 2"
@@ -163,11 +172,26 @@ diff_case multi-light 128 0.00055 0.0004 0,24,128,96
 # gi-box 7.5e-4 (0.28%), cornell 1.6e-3 (1%).
 diff_case gi-box 256 0.00075 0.00075
 diff_case cornell 256 0.0026 0.0016
+# Textures (POV-Ray's image_map with interpolate 2, and checker, carried onto the quad by a
+# matrix: src/export/pov.c). An image magnified to ~8 pixels a texel under a point light: Lmax
+# 0.31, half floats 1.6e-4, hard edges (the quads' outlines, R5) to the 0.25%; FLOOR 3e-4.
+# BIAS 0.3% of the mean 0.059 (measured -1.1e-5 to -1.6e-5 over 3 seeds). The checker: Lmax
+# 0.32, half floats 1.6e-4 and the R5 error at its many seams (rms 0.0015 of a contrast of 0.25:
+# 3.7e-4), 4e-4 in quadrature. At 64 spp a seam pixel whose sliver of the other square no
+# random sample hit has a zero variance and fails alone (0.5% of pixels did); 256 spp makes
+# that rare (0 to 4 pixels over 3 seeds). BIAS 0.3% of the mean 0.071 (measured <= 1.2e-5).
+diff_case texture-image 64 0.0003 0.00018
+diff_case texture-checker 256 0.0004 0.00021
 
 # The diffs see the errors they are for: 1/pi dropped (every light pi times too bright), the lens
 # radius halved, and a light 2% too bright.
 must_fail point-shadows 64 0.0002 0.00015 "$(sed 's/intensity 20 }/intensity 62.831853 }/' tests/pov/point-shadows.mcrt)" "1/pi dropped"
 must_fail point-shadows 64 0.0002 0.00015 "$(sed 's/intensity 20 }/intensity 20.4 }/' tests/pov/point-shadows.mcrt)" "light 2% too bright"
 must_fail dof 256 0.0003 0.00021 "$(sed 's/lens_radius 0.12/lens_radius 0.06/' tests/pov/dof.mcrt)" "lens radius halved"
+# ... and a texture upside down, shifted by half a texel (texel centres at x/w instead of
+# (x + 1/2)/w) or its checker squares swapped.
+must_fail texture-image 64 0.0003 0.00018 "$(sed -e 's/scale 2 1 /scale 2 -1 /' -e "s|\"texture-image.png\"|\"$(pwd)/tests/pov/texture-image.png\"|" tests/pov/texture-image.mcrt)" "the image upside down"
+must_fail texture-image 64 0.0003 0.00018 "$(sed -e 's/offset 0.25 0 /offset 0.3125 0 /' -e "s|\"texture-image.png\"|\"$(pwd)/tests/pov/texture-image.png\"|" tests/pov/texture-image.mcrt)" "the image half a texel off"
+must_fail texture-checker 256 0.0004 0.00021 "$(sed 's/offset 0.5 0 /offset 1.5 0 /' tests/pov/texture-checker.mcrt)" "the squares swapped"
 
 finish

@@ -80,9 +80,9 @@ static mcrt_status refuse(const struct scene *s, mc_diag *d, int mark, const cha
 /* ---- materials ---- */
 
 /* The declarations of material k: texture Tk, and for a form with an interior also interior Ik. */
-static void put_diffuse(FILE *f, int k, const struct material *m);
-static void put_mirror(FILE *f, int k, const struct material *m);
-static void put_glass(FILE *f, int k, const struct material *m);
+static void put_diffuse(FILE *f, const struct scene *s, int k, const struct material *m);
+static void put_mirror(FILE *f, const struct scene *s, int k, const struct material *m);
+static void put_glass(FILE *f, const struct scene *s, int k, const struct material *m);
 
 /* Why POV-Ray cannot reproduce this glass, or NULL. */
 static const char *glass_refusal(const struct material *m)
@@ -99,7 +99,7 @@ static const char *glass_refusal(const struct material *m)
 static const struct pov_form {
     const struct mc_material_kind *kind;
     const char *(*refusal)(const struct material *m); /* NULL: every parameter set maps */
-    void (*put)(FILE *f, int k, const struct material *m);
+    void (*put)(FILE *f, const struct scene *s, int k, const struct material *m);
     int interior;
 } pov_forms[] = {
     {MC_MATERIAL_KIND(diffuse), NULL, put_diffuse, 0},
@@ -131,6 +131,38 @@ static mcrt_status check_material(const struct scene *s, const struct material *
     if (form->refusal && (why = form->refusal(m)) != NULL)
         return refuse(s, d, -1, what, why);
     return MCRT_OK;
+}
+
+/* ---- textures ---- */
+
+/* The POV-Ray image type of an image texture's file, by its suffix, or NULL. */
+static const char *pov_image_type(const char *path)
+{
+    const char *dot = strrchr(path, '.');
+    if (dot && (!strcmp(dot, ".png") || !strcmp(dot, ".PNG")))
+        return "png";
+    if (dot && (!strcmp(dot, ".exr") || !strcmp(dot, ".EXR")))
+        return "exr";
+    return NULL;
+}
+
+/* Why POV-Ray cannot reproduce material m's textures on primitive p, or NULL. Only a diffuse
+ * colour on a quad is mapped: there (u, v) is affine in the point, as POV-Ray's planar pattern
+ * space carried onto the quad by a matrix (put_texture_transform). */
+static const char *texture_refusal(const struct scene *s, const struct prim *p, const struct material *m)
+{
+    const struct texture *t = m->texture ? &s->textures[m->texture - 1] : NULL;
+    if (!t)
+        return NULL;
+    if (m->kind != MC_MATERIAL_KIND(diffuse))
+        return "only a diffuse colour is mapped (POV-Ray's reflection takes no pattern)";
+    if (p->kind != PRIM_QUAD)
+        return "only a quad's texture coordinates are mapped";
+    if (t->kind == TEXTURE_IMAGE && !pov_image_type(s->images[t->image - 1].path))
+        return "only PNG and EXR images are mapped (POV-Ray reads no PFM)";
+    if (t->kind == TEXTURE_IMAGE && !(m->color.x == 1.0f && m->color.y == 1.0f && m->color.z == 1.0f))
+        return "an image scaled by a colour is not mapped (POV-Ray's image_map takes no factor)";
+    return NULL;
 }
 
 static mcrt_status check_emitter(const struct scene *s, const struct prim *p, mc_diag *d)
@@ -165,6 +197,7 @@ static mcrt_status pov_check(const struct scene *s, mc_diag *d)
     size_t i;
     int specular = 0;
     mcrt_status st;
+    const char *why;
     if (s->env_light >= 0) /* given, or the default sky of a scene without lights */
         return refuse(s, d, MARK_ENVIRONMENT, "the environment light", "a constant sky has no verified POV-Ray mapping");
     if (s->integrator.max_depth == 0)
@@ -184,6 +217,11 @@ static mcrt_status pov_check(const struct scene *s, mc_diag *d)
             return refuse(s, d, -1, mc_shape_names[p->kind], "the shape has no POV-Ray mapping");
         if ((st = check_material(s, m, d)) != MCRT_OK)
             return st;
+        if ((why = texture_refusal(s, p, m)) != NULL) {
+            char what[128];
+            snprintf(what, sizeof what, "the texture of material '%s'", m->name);
+            return refuse(d, what, why);
+        }
         if (p->normals >= 0 && !v3_is_zero(s->normals[p->normals]))
             return refuse(s, d, -1, "smooth-shaded triangles", "interpolated normals are not verified");
         if (p->motion && s->motions[p->motion - 1].omega != 0.0f)
@@ -317,16 +355,40 @@ static void put_texture_head(FILE *f, int k, const struct material *m)
     fprintf(f, "// material '%s'\n#declare T%d = texture { pigment { ", m->name, k);
 }
 
-static void put_diffuse(FILE *f, int k, const struct material *m)
+/* A texture as a POV-Ray pigment in its pattern space (s, t) = (u·scale + offset), z = 1/2,
+ * which put_texture_transform carries onto each quad: a checker (POV-Ray's `checker`, colour 1
+ * where ⌊x⌋ + ⌊y⌋ + ⌊z⌋ is even: z = 1/2 keeps ⌊z⌋ = 0, away from its jump at 0), or an image
+ * map (planar: the image over the unit square of x, y, its bottom row at y = 0, repeated;
+ * `interpolate 2` is bilinear; a PNG decoded from sRGB as mcrt does). */
+static void put_pattern(FILE *f, const struct scene *s, const struct material *m)
+{
+    const struct texture *t = &s->textures[m->texture - 1];
+    if (t->kind == TEXTURE_CHECKER) {
+        fputs("checker ", f);
+        put_rgb(f, v3_mul(m->color, t->even), 1.0);
+        fputs(", ", f);
+        put_rgb(f, v3_mul(m->color, t->odd), 1.0);
+    } else {
+        const char *path = s->images[t->image - 1].path, *type = pov_image_type(path);
+        fprintf(f, "image_map { %s \"%s\"%s interpolate 2 }", type, path,
+                strcmp(type, "png") == 0 ? " gamma srgb" : "");
+    }
+}
+
+static void put_diffuse(FILE *f, const struct scene *s, int k, const struct material *m)
 {
     put_texture_head(f, k, m);
-    put_rgb(f, m->color, 1.0);
+    if (m->texture)
+        put_pattern(f, s, m);
+    else
+        put_rgb(f, m->color, 1.0);
     fputs(" } finish { ambient 0 diffuse 1 brilliance 1 specular 0 phong 0 } }\n", f);
 }
 
 /* Constant reflectance at every angle (mapping note, mirror rows). */
-static void put_mirror(FILE *f, int k, const struct material *m)
+static void put_mirror(FILE *f, const struct scene *s, int k, const struct material *m)
 {
+    (void)s;
     put_texture_head(f, k, m);
     fputs("rgb 0 } finish { ambient 0 diffuse 0 specular 0 phong 0 reflection { ", f);
     put_rgb(f, m->color, 1.0);
@@ -334,8 +396,9 @@ static void put_mirror(FILE *f, int k, const struct material *m)
 }
 
 /* Unpolarised Fresnel, TIR included (mapping note, dielectric rows); checked smooth and clear. */
-static void put_glass(FILE *f, int k, const struct material *m)
+static void put_glass(FILE *f, const struct scene *s, int k, const struct material *m)
 {
+    (void)s;
     put_texture_head(f, k, m);
     fprintf(f, "rgbf 1 } finish { ambient 0 diffuse 0 specular 0 phong 0 reflection { 0, 1 "
                "fresnel on } conserve_energy } }\n#declare I%d = interior { ior %.7g }\n",
@@ -481,10 +544,27 @@ static const struct pov_shape pov_shapes[PRIM_KIND_COUNT] = {
     [PRIM_DISK] = {put_disk, NULL, 0},
 };
 
+/* The pattern space of put_pattern onto quad p: (s, t, 1/2) to corner + u·edge1 + v·edge2 for
+ * (u, v) = ((s, t) − offset)/scale, its z along the normal (POV-Ray's matrix maps (x, y, z) to
+ * x·row1 + y·row2 + z·row3 + row4). */
+static void put_texture_transform(FILE *f, const struct texture *t, const struct prim *p)
+{
+    vec3 e1 = p->p[1], e2 = p->p[2], n = v3_normalize(v3_cross(e1, e2)), o = p->p[0];
+    fprintf(f, " translate <%.7g, %.7g, -0.5> scale <%.9g, %.9g, 1>", -t->offset.x + 0.0f,
+            -t->offset.y + 0.0f, 1.0 / t->scale.x, 1.0 / t->scale.y);
+    fprintf(f, " matrix <%.7g, %.7g, %.7g, %.7g, %.7g, %.7g, %.7g, %.7g, %.7g, %.7g, %.7g, %.7g>",
+            e1.x + 0.0f, e1.y + 0.0f, e1.z + 0.0f, e2.x + 0.0f, e2.y + 0.0f, e2.z + 0.0f,
+            n.x + 0.0f, n.y + 0.0f, n.z + 0.0f, o.x + 0.0f, o.y + 0.0f, o.z + 0.0f);
+}
+
 static void put_prim(FILE *f, const struct scene *s, const struct prim *p)
 {
+    const struct material *m = &s->materials[p->material];
     pov_shapes[p->kind].object(f, p);
-    fprintf(f, "texture { T%d }", p->material);
+    fprintf(f, "texture { T%d", p->material);
+    if (m->texture)
+        put_texture_transform(f, &s->textures[m->texture - 1], p);
+    fputs(" }", f);
     if (pov_form(&s->materials[p->material])->interior)
         fprintf(f, " interior { I%d }", p->material);
     put_motion(f, s, p);
@@ -519,7 +599,7 @@ static int put_scene(FILE *f, const struct scene *s)
         if (mc_export_is_emitter(prims[i]) || used[k])
             continue;
         used[k] = 1;
-        pov_form(&s->materials[k])->put(f, k, &s->materials[k]);
+        pov_form(&s->materials[k])->put(f, s, k, &s->materials[k]);
     }
     free(used);
     for (i = 0; i < s->light_count; i++)
