@@ -122,8 +122,6 @@ static mcrt_status check_material(const struct scene *s, const struct material *
     const char *why;
     char what[128], unmapped[160];
     snprintf(what, sizeof what, "material '%s'", m->name[0] ? m->name : "(default)");
-    if (m->texture || m->roughness_texture)
-        return refuse(s, d, MARK_TEXTURE, "a textured material", "textures are not mapped");
     if (!form) {
         snprintf(unmapped, sizeof unmapped, "%s (POV-Ray has no verified model of it)", m->kind->ops->what);
         return refuse(s, d, -1, what, unmapped);
@@ -220,7 +218,7 @@ static mcrt_status pov_check(const struct scene *s, mc_diag *d)
         if ((why = texture_refusal(s, p, m)) != NULL) {
             char what[128];
             snprintf(what, sizeof what, "the texture of material '%s'", m->name);
-            return refuse(d, what, why);
+            return refuse(s, d, MARK_TEXTURE, what, why);
         }
         if (p->normals >= 0 && !v3_is_zero(s->normals[p->normals]))
             return refuse(s, d, -1, "smooth-shaded triangles", "interpolated normals are not verified");
