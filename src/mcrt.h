@@ -124,8 +124,8 @@ typedef struct mcrt_options {
     void *user;
     /* Extra layers mcrt_render_save writes into an EXR, comma-separated: "variance" (the
      * estimated variance of each pixel mean), and of the surface each camera ray meets first,
-     * averaged over the pixel: "albedo" (the material's colour), "normal" (the unit shading
-     * normal facing the camera), "depth" (the distance from the ray's origin, in all three
+     * averaged over the pixel: "albedo" (the material's colour, textured), "normal" (the unit
+     * shading normal facing the camera), "depth" (the distance from the ray's origin, in all three
      * channels); mcrt_names("aov") lists them. Each is the layer NAME.R/G/B, and a miss gives 0.
      * NULL = none. */
     const char *aovs;

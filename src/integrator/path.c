@@ -76,7 +76,7 @@ static inline vec3 radiance(const struct scene *s, const struct integrator_desc 
         if (depth == cfg->max_depth)
             break;
 
-        bsdf_at(s, &r, &h, &b, F);
+        bsdf_at(s, &r, &h, pr, &b, F);
         fr = frame_from_normal(sf.ns);
         wo = frame_to_local(&fr, v3_neg(r.d));
         if (!mc_bsdf_is_delta(&b) && cfg->strategy != STRATEGY_BSDF)

@@ -267,7 +267,7 @@ static void camera_pixel(const struct pass_ctx *c, struct tile_worker *w, int x,
         }
         if (depth == cfg->max_depth)
             break;
-        bsdf_at(s, &r, &h, &b, FEATURE_TEXTURES);
+        mc_scene_bsdf(s, &r, &h, &b);
         fr = frame_from_normal(sf.ns);
         wo = frame_to_local(&fr, v3_neg(r.d));
         uc = mc_sampler_1d(&smp);
@@ -430,7 +430,7 @@ static void trace_photon(const struct pass_ctx *c, struct chunk *ch, uint64_t in
         if (!trace(s, &r, &h, c->motion))
             break;
         surface(s, &r, &h, &sf, c->motion);
-        bsdf_at(s, &r, &h, &b, FEATURE_TEXTURES);
+        mc_scene_bsdf(s, &r, &h, &b);
         /* The first surface a photon reaches is direct light, which the camera pass takes. */
         if (hits >= 2 && !mc_bsdf_is_delta(&b))
             deposit(c, ch, sf.p, wi, hits, beta);

@@ -5,11 +5,12 @@
 
 const char *const mc_texture_names[TEXTURE_KIND_COUNT + 1] = {MC_TEXTURES(MC_NAMES_IDENT)[TEXTURE_KIND_COUNT] = NULL};
 
-/* i mod n in [0, n) for any int i. */
-static int wrap(int i, int n)
+/* Texel i of a row or column of n, for i in [-1, n − 1], and the next, wrapping across the
+ * edge (no division: this runs at every textured hit). */
+static void wrap_pair(int i, int n, int *i0, int *i1)
 {
-    int r = i % n;
-    return r < 0 ? r + n : r;
+    *i0 = i < 0 ? n - 1 : i;
+    *i1 = *i0 + 1 == n ? 0 : *i0 + 1;
 }
 
 static vec3 texel(const float *rgb, int w, int x, int y)
@@ -22,12 +23,15 @@ vec3 mc_texture_bilinear(const float *rgb, int w, int h, float s, float t)
 {
     /* Continuous texel coordinates with texel centres at integers + ½ (Heckbert 1989): x to the
      * right, y down from the top row. Reduced to one period first, so that huge s or t keep their
-     * fraction within float rounding of the product. */
+     * fraction within float rounding of the product: fs, ft in [0, 1) exactly (a float minus its
+     * floor is exact in double), so x0 and y0 lie in [-1, w − 1] and [-1, h − 1]. */
     double fs = s - floor(s), ft = t - floor(t);
     double x = fs * w - 0.5, y = (1.0 - ft) * h - 0.5;
     double x0 = floor(x), y0 = floor(y);
     float ax = (float)(x - x0), ay = (float)(y - y0);
-    int i0 = wrap((int)x0, w), j0 = wrap((int)y0, h), i1 = wrap(i0 + 1, w), j1 = wrap(j0 + 1, h);
+    int i0, i1, j0, j1;
+    wrap_pair((int)x0, w, &i0, &i1);
+    wrap_pair((int)y0, h, &j0, &j1);
     vec3 a = texel(rgb, w, i0, j0), b = texel(rgb, w, i1, j0);
     vec3 c = texel(rgb, w, i0, j1), e = texel(rgb, w, i1, j1);
     vec3 top = v3_madd(a, v3_sub(b, a), ax), bottom = v3_madd(c, v3_sub(e, c), ax);

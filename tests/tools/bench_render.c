@@ -1,5 +1,5 @@
 /* bench_render.c: end-to-end path-tracer throughput through the public API. Not a test: it prints
- * two tables. The first renders each scene alternately specialised and general (--all-features),
+ * three tables. The first renders each scene alternately specialised and general (--all-features),
  * single-threaded, and reports the median samples per CPU second of each and their ratio (> 1:
  * specialising pays). CPU seconds rather than the clock's: on a shared machine a render that
  * waits for a core loses wall time but no CPU time, and wall-clock medians of this table put the
@@ -8,7 +8,8 @@
  * ratio, of each side's fastest render (the one least disturbed by other jobs), is printed beside
  * the ratio of the medians; nine renders each, since under load single renders vary by ±10%. The second renders scenes/cornell.mcrt and a 1M-triangle terrain (written as
  * an OBJ file into a temporary folder) alternately on 1 thread and on all threads: samples per
- * second by the clock and per CPU second, and the thread-scaling factor (issue 7).
+ * second by the clock and per CPU second, and the thread-scaling factor (issue 7). The third
+ * prices textures: one scene untextured, under a checker and under an image (texture_cost).
  *
  *   bench_render [--quick]
  */
@@ -23,16 +24,18 @@
 #include "median.h"
 
 /* A static pinhole scene of diffuse surfaces under point lights: the specialised path draws no
- * lens or time samples, queries no motion BVH and does no MIS. */
-static const char diffuse_points[] =
-    "film { width 128 height 128 spp 16 }\n"
-    "camera { eye 0 2 6 look 0 0.5 0 }\n"
-    "sphere { center -1 0.5 0 radius 0.5 }\n"
-    "sphere { center 1 0.5 0 radius 0.5 }\n"
-    "sphere { center 0 1 -1.5 radius 1 }\n"
-    "quad { corner -5 0 5 edge1 10 0 0 edge2 0 0 -10 }\n"
-    "point_light { position 2 4 2 intensity 20 }\n"
-    "point_light { position -3 3 1 intensity 8 }\n";
+ * lens or time samples, queries no motion BVH and does no MIS. FLOOR_MATERIAL is the floor's
+ * material (the default, diffuse 0.8, here; textured alike in the third table). */
+#define DIFFUSE_POINTS(FLOOR_MATERIAL)                                                          \
+    "film { width 128 height 128 spp 16 }\n"                                                    \
+    "camera { eye 0 2 6 look 0 0.5 0 }\n"                                                       \
+    "sphere { center -1 0.5 0 radius 0.5 }\n"                                                   \
+    "sphere { center 1 0.5 0 radius 0.5 }\n"                                                    \
+    "sphere { center 0 1 -1.5 radius 1 }\n"                                                     \
+    "quad { corner -5 0 5 edge1 10 0 0 edge2 0 0 -10 " FLOOR_MATERIAL "}\n"                     \
+    "point_light { position 2 4 2 intensity 20 }\n"                                             \
+    "point_light { position -3 3 1 intensity 8 }\n"
+static const char diffuse_points[] = DIFFUSE_POINTS("");
 
 struct bench_case {
     const char *name;
@@ -180,6 +183,74 @@ static int scaling(int reps)
     return ok;
 }
 
+/* The third table: what textures cost. The diffuse scene with its floor untextured, under a
+ * checker and under a 512 x 512 image texture, each of colour 0.8 everywhere: the same image and
+ * the same paths, so that the difference is the texture lookups (uv and evaluation at each floor
+ * hit) and the textured kernel. Renders alternate; medians of samples per CPU second. */
+static int texture_cost(int reps)
+{
+    enum { N = 512 };
+    char dir[] = "/tmp/mcrt-bench-XXXXXX", pfm[256], text[1024];
+    double rate[3][16], med[3];
+    const char *names[3] = {"untextured", "checker", "image 512x512"};
+    mcrt_scene *s[3] = {NULL, NULL, NULL};
+    int i, k, ok = 1;
+    FILE *f;
+    if (!mkdtemp(dir))
+        return 0;
+    snprintf(pfm, sizeof pfm, "%s/white.pfm", dir);
+    /* A PFM of 1.0 everywhere (little-endian floats, the scale's sign says so). */
+    if (!(f = fopen(pfm, "wb")))
+        ok = 0;
+    if (f) {
+        float row[3 * N];
+        for (i = 0; i < 3 * N; i++)
+            row[i] = 1.0f;
+        fprintf(f, "PF\n%d %d\n-1.0\n", N, N);
+        for (i = 0; i < N; i++)
+            ok &= fwrite(row, sizeof row, 1, f) == 1;
+        ok &= fclose(f) == 0;
+    }
+    for (k = 0; k < 3 && ok; k++) {
+        if (k == 0)
+            snprintf(text, sizeof text, "material floor { diffuse 0.8 }\n%s",
+                     DIFFUSE_POINTS("material floor "));
+        else if (k == 1)
+            snprintf(text, sizeof text, "texture t { checker 1 1 scale 8 }\n"
+                     "material floor { diffuse 0.8 texture t }\n%s", DIFFUSE_POINTS("material floor "));
+        else
+            snprintf(text, sizeof text, "texture t { image \"%s\" scale 8 }\n"
+                     "material floor { diffuse 0.8 texture t }\n%s", pfm, DIFFUSE_POINTS("material floor "));
+        s[k] = mcrt_scene_new();
+        if (!s[k] || mcrt_scene_load_string(s[k], text, strlen(text), names[k]) != MCRT_OK) {
+            fprintf(stderr, "bench_render: %s: %s\n", names[k], s[k] ? mcrt_scene_error(s[k]) : "no memory");
+            ok = 0;
+        }
+    }
+    for (i = 0; i < reps && ok; i++)
+        for (k = 0; k < 3 && ok; k++) {
+            double sec, cpu;
+            long long samples;
+            ok = render_once(s[k], 0, 1, 16, &sec, &cpu, &samples);
+            rate[k][i] = (double)samples / cpu;
+        }
+    if (ok) {
+        printf("\ntextures: the diffuse scene's floor untextured and textured (colour 0.8 "
+               "everywhere: the same image);\n1 thread, %d alternating renders, median samples "
+               "per CPU second; ratio = textured / untextured\n\n", reps);
+        printf("%-24s %14s %7s\n", "floor", "S/CPU-s", "ratio");
+        for (k = 0; k < 3; k++) {
+            med[k] = median(rate[k], reps);
+            printf("%-24s %14.0f %7.3f\n", names[k], med[k], med[k] / med[0]);
+        }
+    }
+    for (k = 0; k < 3; k++)
+        mcrt_scene_free(s[k]);
+    remove(pfm);
+    rmdir(dir);
+    return ok;
+}
+
 int main(int argc, char **argv)
 {
     static const struct bench_case cases[] = {
@@ -236,5 +307,5 @@ int main(int argc, char **argv)
         fflush(stdout);
         mcrt_scene_free(s);
     }
-    return scaling(reps) ? 0 : 1;
+    return scaling(reps) && texture_cost(compare_reps) ? 0 : 1;
 }

@@ -1,9 +1,9 @@
 /* test_texture.c: textures (scene/texture.h): the bilinear lookup's exact values at and between
  * texel centres, its wrapping and orientation, the checker's squares, scale and offset; an image
  * texture read from a PNG is decoded from sRGB; the scene language's texture block and material
- * keys; the textures feature bit; and a textured furnace: a diffuse quad under a white sky, whose
- * every pixel is the texture's bilinear value at the pixel's centre (closed form), within a bound
- * derived from the pixel's sampling noise. */
+ * keys; the textures feature bit; the albedo AOV of a textured surface; and a textured furnace:
+ * a diffuse quad under a white sky, whose every pixel is the texture's bilinear value at the
+ * pixel's centre (closed form), within a bound derived from the pixel's sampling noise. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "io/image.h"
+#include "render/aov.h"
 #include "render_util.h"
 #include "scene/features.h"
 #include "scene/scene.h"
@@ -195,8 +196,26 @@ static void test_scene_language(void)
         mc_scene_bsdf(&s, &r, &h, &b);
         T_NEAR(b.color.y, 0.2, 1e-6, "textured colour");
         T_NEAR(b.alpha, 0.25 * mean * mean, 1e-6, "textured alpha");
+        /* The albedo layer (and so the denoiser's albedo feature) records the textured colour. */
+        {
+            struct aov_pixel px;
+            memset(&px, 0, sizeof px);
+            mc_aov_record(&px, 0, &s, &r);
+            T_NEAR(px.half[0].albedo[1], 0.2, 1e-6, "the albedo AOV's green: the checker's 0.4 x 0.5");
+            T_NEAR(px.half[0].albedo[2], 0.3, 1e-6, "the albedo AOV's blue: 0.6 x 0.5");
+        }
     }
     mc_scene_free(&s);
+    /* mcrt info names each texture and its memory. */
+    {
+        static const char text[] = "texture c { checker 0 1 }\nmaterial m { diffuse texture c }\n"
+                                   "sphere { material m }\n";
+        mcrt_scene *ms = mcrt_scene_new();
+        const char *info = ms && mcrt_scene_load_string(ms, text, strlen(text), "t") == MCRT_OK
+                               ? mcrt_scene_info(ms) : "";
+        T_CHECK(strstr(info, "textures") && strstr(info, "\ntexture c: checker, "), "info: %s", info);
+        mcrt_scene_free(ms);
+    }
     /* An untextured scene has no textures feature; an OBJ material's map is the same call. */
     T_CHECK(load(&s, "sphere { }\n", &d) == 0, "%s", d.msg);
     T_CHECK(!(mc_scene_features(&s) & FEATURE_TEXTURES), "no textures, no feature");
