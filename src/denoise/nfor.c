@@ -29,15 +29,19 @@ static const float reg_k[2] = {0.5f, 1.0f};
 #define DIST_CLAMP 10000.0f
 #define MIN_WEIGHT 1e-4f
 #define SKIP_WEIGHT 1e-6f
+#define SKIP_DIST 13.9f /* expf(-13.9) = 9.2e-7 < SKIP_WEIGHT: left out without calling expf */
 
 #define MAX_DIM (3 + MC_NFOR_MAX_FEATURES) /* regression columns: 1, x, y, the features */
+#define PAD (REG_R + REG_F) /* the widest reach of a patch around a window pixel */
 
-/* What NL-means weights are computed from: gc interleaved channels and their variances (scaled
- * by vscale), patch radius f, bandwidth k. */
+/* What NL-means weights are computed from: gc interleaved channels and their variances (already
+ * scaled by the guide's variance scale), each copied with a border of PAD pixels (the image's
+ * edge pixels repeated, pad_copy), so that a patch around any window pixel is read without
+ * bounds checks; patch radius f, bandwidth k. */
 struct guide {
     const float *img, *var;
     int gc, f;
-    float k, vscale;
+    float k;
 };
 
 /* The image's size, the threads the tiles run on, and a tile's failure to get memory. */
@@ -48,60 +52,78 @@ struct pool {
 
 static int clampi(int v, int lo, int hi) { return v < lo ? lo : v > hi ? hi : v; }
 
+/* src (nc channels, width × height) copied times scale into dst with a border of PAD pixels on
+ * every side, each border pixel a copy of the nearest edge pixel. */
+static void pad_copy(const float *src, int nc, int width, int height, float scale, float *dst)
+{
+    int pw = width + 2 * PAD, x, y, c;
+    for (y = 0; y < height + 2 * PAD; y++)
+        for (x = 0; x < pw; x++) {
+            const float *s = src + ((size_t)clampi(y - PAD, 0, height - 1) * width
+                                    + (size_t)clampi(x - PAD, 0, width - 1)) * nc;
+            for (c = 0; c < nc; c++)
+                dst[((size_t)y * pw + x) * nc + c] = s[c] * scale;
+        }
+}
+
 /* The NL-means weights of pixel p = (x, y) against p + (dx, dy), for every p of the tile
  * [x0, x1) × [y0, y1), into wt (row-major, tile-sized). scratch holds 2·(T + 2f)²·gc floats.
- * Pixels outside the image are read clamped to its border. */
-static void weights(const struct guide *g, int width, int height, int x0, int y0, int x1, int y1,
-                    int dx, int dy, float *wt, float *scratch)
+ * Pixels outside the image read the padded guide's copies of its border. Each loop runs along
+ * rows of contiguous floats (a row's pixels and their channels), so that it vectorises. */
+static void weights(const struct guide *g, int width, int x0, int y0, int x1, int y1, int dx,
+                    int dy, float *wt, float *scratch)
 {
-    int f = g->f, pw = x1 - x0 + 2 * f, ph = y1 - y0 + 2 * f, gc = g->gc;
-    int tw = x1 - x0, x, y, c, i;
-    float *dist = scratch, *tmp = scratch + (size_t)pw * ph * gc;
-    float norm = 1.0f / (float)((2 * f + 1) * (2 * f + 1));
+    int f = g->f, gc = g->gc, tw = x1 - x0, th = y1 - y0, ph = th + 2 * f;
+    int rw = (tw + 2 * f) * gc, tr = tw * gc, x, y, c, i, j;
+    size_t stride = (size_t)(width + 2 * PAD) * (size_t)gc;
+    ptrdiff_t off = (ptrdiff_t)dy * (ptrdiff_t)stride + (ptrdiff_t)dx * gc;
+    float *dist = scratch, *tmp = scratch + (size_t)rw * ph, *col = tmp + (size_t)tr * ph;
+    float norm = 1.0f / (float)((2 * f + 1) * (2 * f + 1)), kk = g->k * g->k;
     for (y = 0; y < ph; y++) {
-        int py = clampi(y0 - f + y, 0, height - 1), qy = clampi(y0 - f + y + dy, 0, height - 1);
-        for (x = 0; x < pw; x++) {
-            int px = clampi(x0 - f + x, 0, width - 1), qx = clampi(x0 - f + x + dx, 0, width - 1);
-            size_t p = ((size_t)py * width + px) * gc, q = ((size_t)qy * width + qx) * gc;
-            for (c = 0; c < gc; c++) {
-                float vp = g->var[p + c] * g->vscale, vq = g->var[q + c] * g->vscale;
-                float diff = g->img[p + c] - g->img[q + c];
-                float dd = (diff * diff - (vp + (vp < vq ? vp : vq)))
-                           / (DIST_EPS + g->k * g->k * (vp + vq));
-                dist[((size_t)y * pw + x) * gc + c] = dd < DIST_CLAMP ? dd : DIST_CLAMP;
-            }
+        size_t p = (size_t)(y0 - f + y + PAD) * stride + (size_t)(x0 - f + PAD) * gc;
+        const float *ip = g->img + p, *iq = ip + off, *vpp = g->var + p, *vqp = vpp + off;
+        float *dr = dist + (size_t)y * rw;
+        for (i = 0; i < rw; i++) {
+            float vp = vpp[i], vq = vqp[i], diff = ip[i] - iq[i];
+            float dd = (diff * diff - (vp + (vp < vq ? vp : vq))) / (DIST_EPS + kk * (vp + vq));
+            dr[i] = dd < DIST_CLAMP ? dd : DIST_CLAMP;
         }
     }
-    /* The box filter over the patch, separably: rows into tmp, then columns. */
-    for (y = 0; y < ph; y++)
-        for (x = 0; x < tw; x++)
-            for (c = 0; c < gc; c++) {
-                float s = 0.0f;
-                for (i = 0; i <= 2 * f; i++)
-                    s += dist[((size_t)y * pw + x + i) * gc + c];
-                tmp[((size_t)y * tw + x) * gc + c] = s;
-            }
-    for (y = 0; y < y1 - y0; y++)
+    /* The box filter over the patch, separably: rows into tmp, then columns, each sum taken
+     * tap by tap over a whole row. */
+    for (y = 0; y < ph; y++) {
+        float *t = tmp + (size_t)y * tr;
+        const float *dr = dist + (size_t)y * rw;
+        for (j = 0; j < tr; j++)
+            t[j] = 0.0f;
+        for (i = 0; i <= 2 * f; i++)
+            for (j = 0; j < tr; j++)
+                t[j] += dr[j + i * gc];
+    }
+    for (y = 0; y < th; y++) {
+        for (j = 0; j < tr; j++)
+            col[j] = 0.0f;
+        for (i = 0; i <= 2 * f; i++)
+            for (j = 0; j < tr; j++)
+                col[j] += tmp[(size_t)(y + i) * tr + j];
+        for (j = 0; j < tr; j++)
+            col[j] *= norm;
         for (x = 0; x < tw; x++) {
-            float dmax = 0.0f;
-            for (c = 0; c < gc; c++) {
-                float s = 0.0f;
-                for (i = 0; i <= 2 * f; i++)
-                    s += tmp[((size_t)(y + i) * tw + x) * gc + c];
-                s *= norm;
-                dmax = s > dmax ? s : dmax;
-            }
+            float dmax = 0.0f, *o = wt + (size_t)y * tw + x;
+            for (c = 0; c < gc; c++)
+                dmax = col[x * gc + c] > dmax ? col[x * gc + c] : dmax;
             /* The least similar channel decides (Tungsten takes the minimum weight). */
-            wt[(size_t)y * tw + x] = expf(-dmax);
-            if (dx == 0 && dy == 0 && wt[(size_t)y * tw + x] < MIN_WEIGHT)
-                wt[(size_t)y * tw + x] = MIN_WEIGHT;
+            *o = dmax > SKIP_DIST ? 0.0f : expf(-dmax);
+            if (dx == 0 && dy == 0 && *o < MIN_WEIGHT)
+                *o = MIN_WEIGHT;
         }
+    }
 }
 
 static size_t scratch_floats(const struct guide *g)
 {
     size_t p = (size_t)(MC_TILE + 2 * g->f);
-    return 2 * p * p * (size_t)g->gc;
+    return (2 * p * p + MC_TILE) * (size_t)g->gc;
 }
 
 /* Run fn over the tiles of the image on the pool's threads. */
@@ -146,7 +168,7 @@ static void nlm_tile(void *ctx, struct tile_worker *w, int x0, int y0, int x1, i
     }
     for (dy = -j->r; dy <= j->r; dy++)
         for (dx = -j->r; dx <= j->r; dx++) {
-            weights(j->g, width, height, x0, y0, x1, y1, dx, dy, wt, wt + np);
+            weights(j->g, width, x0, y0, x1, y1, dx, dy, wt, wt + np);
             for (y = y0; y < y1; y++) {
                 if (y + dy < 0 || y + dy >= height)
                     continue;
@@ -264,7 +286,7 @@ static void reg_tile(void *ctx, struct tile_worker *w, int x0, int y0, int x1, i
     }
     for (o = 0, dy = -R; dy <= R; dy++)
         for (dx = -R; dx <= R; dx++, o++)
-            weights(j->g, width, height, x0, y0, x1, y1, dx, dy, wt + (size_t)o * np,
+            weights(j->g, width, x0, y0, x1, y1, dx, dy, wt + (size_t)o * np,
                     wt + (size_t)side * side * np);
     for (y = y0; y < y1; y++)
         for (x = x0; x < x1; x++) {
@@ -408,8 +430,12 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
     const float *const *E = in->emission;
     /* One block of floats: 3-channel images, then feature planes. */
     enum { VAR, VARS, MEAN, CAND, MSE0 = CAND + 4, MSE1, TMP, SEL, CA, CB, NIMG };
-    float *buf = mc_malloc((n3 * NIMG + n * (size_t)(2 * nf + 2)) * sizeof *buf);
-    float *img[NIMG], *pre[2][MC_NFOR_MAX_FEATURES], *fvar, *fvars;
+    /* Then the padded guides (pad_copy), 3 channels each: the halves, the variance of a half and
+     * of the mean, the mean. */
+    enum { PA, PB, PVAR, PVARM, PMEAN, NPAD };
+    size_t np3 = (size_t)(w + 2 * PAD) * (size_t)(h + 2 * PAD) * 3;
+    float *buf = mc_malloc((n3 * NIMG + n * (size_t)(2 * nf + 2) + np3 * NPAD) * sizeof *buf);
+    float *img[NIMG], *pre[2][MC_NFOR_MAX_FEATURES], *fvar, *fvars, *pad[NPAD];
     const float *cpre[2][MC_NFOR_MAX_FEATURES];
     struct pool pl;
     struct guide g;
@@ -423,6 +449,8 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
             cpre[half][f] = pre[half][f] = buf + NIMG * n3 + (size_t)(2 * f + half) * n;
     fvar = buf + NIMG * n3 + (size_t)(2 * nf) * n;
     fvars = fvar + n;
+    for (i = 0; i < NPAD; i++)
+        pad[i] = fvars + n + i * np3;
     pl.width = w;
     pl.height = h;
     pl.threads = threads;
@@ -444,6 +472,8 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
         img[MEAN][i] = 0.5f * (A[i] + B[i]);
     }
     box3(img[VAR], 3, w, h, img[VARS]);
+    pad_copy(A, 3, w, h, 1.0f, pad[PA]);
+    pad_copy(B, 3, w, h, 1.0f, pad[PB]);
 
     /* 1. Cross prefiltering of the features (NFOR §5.1): A's feature with weights from B's, whose
      * variance, that of a half, is (f_A − f_B)²/2. */
@@ -451,39 +481,43 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
         for (i = 0; i < n; i++)
             fvar[i] = 0.5f * sq(in->feature[0][f][i] - in->feature[1][f][i]);
         box3(fvar, 1, w, h, fvars);
+        /* The mean's padded guides serve as the single-channel guides' space here. */
+        pad_copy(fvars, 1, w, h, 1.0f, pad[PVAR]);
         for (half = 0; half < 2 && st == MCRT_OK; half++) {
-            g.img = in->feature[1 - half][f];
-            g.var = fvars;
+            pad_copy(in->feature[1 - half][f], 1, w, h, 1.0f, pad[PMEAN]);
+            g.img = pad[PMEAN];
+            g.var = pad[PVAR];
             g.gc = 1;
             g.f = PRE_F;
             g.k = PRE_K;
-            g.vscale = 1.0f;
             st = nlm(&pl, &g, in->feature[half][f], 1, PRE_R, pre[half][f], d);
         }
     }
 
     /* 2. Each half regressed on the other half's features with the other half's weights, for
      * two bandwidths; 3. their errors. */
+    pad_copy(img[VARS], 3, w, h, 1.0f, pad[PVAR]);
+    pad_copy(img[VARS], 3, w, h, 0.5f, pad[PVARM]);
+    pad_copy(img[MEAN], 3, w, h, 1.0f, pad[PMEAN]);
     for (k = 0; k < 2 && st == MCRT_OK; k++) {
         float *ca = img[CAND + 2 * k], *cb = img[CAND + 2 * k + 1];
         g.gc = 3;
         g.f = REG_F;
         g.k = reg_k[k];
-        g.var = img[VARS];
-        g.vscale = 1.0f;
-        g.img = B;
+        g.var = pad[PVAR];
+        g.img = pad[PB];
         st = regress(&pl, &g, A, cpre[1], nf, ca, d);
-        g.img = A;
+        g.img = pad[PA];
         if (st == MCRT_OK)
             st = regress(&pl, &g, B, cpre[0], nf, cb, d);
         if (st != MCRT_OK)
             break;
         mse_estimate(A, B, ca, cb, img[VAR], n3, img[TMP]);
         /* Smoothed by NL-means on the mean image, whose variance is half a half's. */
-        g.img = img[MEAN];
+        g.img = pad[PMEAN];
+        g.var = pad[PVARM];
         g.f = MAP_F;
         g.k = MAP_K;
-        g.vscale = 0.5f;
         st = nlm(&pl, &g, img[TMP], 3, MAP_R, img[MSE0 + k], d);
     }
     if (st == MCRT_OK) {
