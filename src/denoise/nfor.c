@@ -3,6 +3,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <stdint.h>
 #include <string.h>
 
 #include "core/alloc.h"
@@ -22,14 +23,13 @@
 static const float reg_k[2] = {0.5f, 1.0f};
 
 /* NL-means distances (Rousselle, Manzi and Zwicker 2012, eq. 3): the patch distance, with the
- * variances' share taken off, over the variances; clamped so exp() stays finite. A weight never
- * goes below MIN_WEIGHT at the pixel itself, and weights below SKIP_WEIGHT are left out of the
- * sums (they change nothing visible and cost as much as the others). */
+ * variances' share taken off, over the variances; clamped so exp() stays finite (and a NaN
+ * becomes the clamp). A weight never goes below MIN_WEIGHT at the pixel itself, and weights
+ * below 2^-19.5 = 1.4e-6 are 0 (exp_neg), left out of the sums: they change nothing visible and
+ * cost as much as the others. */
 #define DIST_EPS 1e-7f
 #define DIST_CLAMP 10000.0f
 #define MIN_WEIGHT 1e-4f
-#define SKIP_WEIGHT 1e-6f
-#define SKIP_DIST 13.9f /* expf(-13.9) = 9.2e-7 < SKIP_WEIGHT: left out without calling expf */
 
 #define MAX_DIM (3 + MC_NFOR_MAX_FEATURES) /* regression columns: 1, x, y, the features */
 #define PAD (REG_R + REG_F) /* the widest reach of a patch around a window pixel */
@@ -66,12 +66,33 @@ static void pad_copy(const float *src, int nc, int width, int height, float scal
         }
 }
 
-/* The NL-means weights of pixel p = (x, y) against p + (dx, dy), for every p of the tile
- * [x0, x1) × [y0, y1), into wt (row-major, tile-sized). scratch holds 2·(T + 2f)²·gc floats.
+/* e^-v[i] for each of n distances 0 <= v[i] <= DIST_CLAMP, in place: 2^-t (t = v·log2 e) as
+ * 2^-k·e^f with k = t rounded and |f| <= ln2/2, e^f by its Taylor polynomial to f^6 (relative
+ * error below 1e-6, measured against exp() over [0, 14]), 2^-k built in the float's exponent
+ * bits; 0 from k = 20 on (v > 13.5). Plain arithmetic that vectorises, and the same bits on
+ * every machine, which libm's expf (a per-processor variant) does not promise. */
+static void exp_neg(float *v, int n)
+{
+    int i;
+    for (i = 0; i < n; i++) {
+        float t = v[i] * 1.44269504f;
+        int k = (int)(t + 0.5f);
+        float f = ((float)k - t) * 0.693147181f;
+        float e = 1.0f + f * (1.0f + f * (0.5f + f * (1.0f / 6 + f * (1.0f / 24 + f * (1.0f / 120
+                  + f * (1.0f / 720))))));
+        union { int32_t i; float f; } scale;
+        scale.i = (127 - (k < 20 ? k : 127)) << 23;
+        v[i] = e * scale.f;
+    }
+}
+
+/* The NL-means patch distances of pixel p = (x, y) against p + (dx, dy), for every p of the tile
+ * [x0, x1) × [y0, y1), into wt (row-major, tile-sized): the largest over the channels, for the
+ * least similar channel decides (Tungsten takes the minimum weight). scratch holds 2·(T + 2f)²·gc floats.
  * Pixels outside the image read the padded guide's copies of its border. Each loop runs along
  * rows of contiguous floats (a row's pixels and their channels), so that it vectorises. */
-static void weights(const struct guide *g, int width, int x0, int y0, int x1, int y1, int dx,
-                    int dy, float *wt, float *scratch)
+static void patch_dist(const struct guide *g, int width, int x0, int y0, int x1, int y1,
+                       int dx, int dy, float *wt, float *scratch)
 {
     int f = g->f, gc = g->gc, tw = x1 - x0, th = y1 - y0, ph = th + 2 * f;
     int rw = (tw + 2 * f) * gc, tr = tw * gc, x, y, c, i, j;
@@ -109,15 +130,21 @@ static void weights(const struct guide *g, int width, int x0, int y0, int x1, in
         for (j = 0; j < tr; j++)
             col[j] *= norm;
         for (x = 0; x < tw; x++) {
-            float dmax = 0.0f, *o = wt + (size_t)y * tw + x;
+            float dmax = 0.0f;
             for (c = 0; c < gc; c++)
                 dmax = col[x * gc + c] > dmax ? col[x * gc + c] : dmax;
-            /* The least similar channel decides (Tungsten takes the minimum weight). */
-            *o = dmax > SKIP_DIST ? 0.0f : expf(-dmax);
-            if (dx == 0 && dy == 0 && *o < MIN_WEIGHT)
-                *o = MIN_WEIGHT;
+            wt[(size_t)y * tw + x] = dmax;
         }
     }
+}
+
+/* The weights of the distances patch_dist gave for the offset (0, 0) or not (centre), in place. */
+static void weights(float *wt, int n, int centre)
+{
+    int i;
+    exp_neg(wt, n);
+    for (i = 0; centre && i < n; i++)
+        wt[i] = wt[i] < MIN_WEIGHT ? MIN_WEIGHT : wt[i];
 }
 
 static size_t scratch_floats(const struct guide *g)
@@ -168,14 +195,15 @@ static void nlm_tile(void *ctx, struct tile_worker *w, int x0, int y0, int x1, i
     }
     for (dy = -j->r; dy <= j->r; dy++)
         for (dx = -j->r; dx <= j->r; dx++) {
-            weights(j->g, width, x0, y0, x1, y1, dx, dy, wt, wt + np);
+            patch_dist(j->g, width, x0, y0, x1, y1, dx, dy, wt, wt + np);
+            weights(wt, (int)np, dx == 0 && dy == 0);
             for (y = y0; y < y1; y++) {
                 if (y + dy < 0 || y + dy >= height)
                     continue;
                 for (x = x0; x < x1; x++) {
                     size_t l = (size_t)(y - y0) * tw + (size_t)(x - x0);
                     const float *s = j->src + ((size_t)(y + dy) * width + (size_t)(x + dx)) * sc;
-                    if (x + dx < 0 || x + dx >= width || wt[l] < SKIP_WEIGHT)
+                    if (x + dx < 0 || x + dx >= width || wt[l] == 0.0f)
                         continue;
                     for (c = 0; c < sc; c++)
                         acc[l * (sc + 1) + c] += wt[l] * s[c];
@@ -245,105 +273,154 @@ static void solve(double *M, int n, double *b)
     }
 }
 
+/* The regression's window: offset o = (dy + R)·SIDE + (dx + R), padded with zero weights to NWP,
+ * a multiple of LANES. */
+enum { SIDE = 2 * REG_R + 1, NW = SIDE * SIDE, LANES = 8, NWP = (NW + LANES - 1) / LANES * LANES };
+
+/* Σ a[o]·b[o] over the padded window, in LANES partial sums added in double at the end: the
+ * same operations in the same order whatever vector width the compiler picks. */
+static double dot(const float *a, const float *b)
+{
+    float s[LANES] = {0.0f};
+    double t = 0.0;
+    int o, l;
+    for (o = 0; o < NWP; o += LANES)
+        for (l = 0; l < LANES; l++)
+            s[l] += a[o + l] * b[o + l];
+    for (l = 0; l < LANES; l++)
+        t += s[l];
+    return t;
+}
+
 struct reg_job {
     struct pool *pl;
-    const struct guide *g;
-    const float *img;          /* the colour regressed (3 channels) */
-    const float *const *feat;  /* nf planes */
+    const struct guide *g;     /* with k = 1: the distances, to which each bandwidth k applies */
+    const float *img;          /* the colour regressed, padded (3 channels) */
+    const float *const *feat;  /* nf planes, padded */
     int nf;
-    float **acc;               /* per tile: (T + 2R)² × 4 floats (Σ w·ŷ, Σ w), or NULL */
+    float **acc;               /* per tile: two (one a bandwidth) (T + 2R)² × 4 floats */
 };
 
-/* The regression's row for neighbour q of pixel p at offset (dx, dy): 1, the offset, and each
- * feature's difference from p's (the fit is centred on p). Both the fit and its evaluation over
- * the window read the same row. */
-static void design_row(const struct reg_job *j, size_t q, size_t p, int dx, int dy, double *row)
+/* One pixel's window, column by column (the columns of the design matrix: 1, the offset, and each
+ * feature's difference from the pixel's own, so that the fit is centred on it), the colours and,
+ * per bandwidth, the weights and the weighted columns. */
+struct window {
+    float x[MAX_DIM][NWP], y[3][NWP], w[2][NWP], wx[MAX_DIM][NWP];
+};
+
+/* Pixel (x, y)'s window (stride: a padded row), its distances dist (NWP of them, from
+ * patch_dist with k = 1) turned into each bandwidth's weights, 0 outside the image. */
+static void window_fill(const struct reg_job *j, int x, int y, const float *dist, struct window *v)
 {
-    int a;
-    row[0] = 1.0;
-    row[1] = dx;
-    row[2] = dy;
-    for (a = 0; a < j->nf; a++)
-        row[3 + a] = (double)j->feat[a][q] - j->feat[a][p];
+    const int R = REG_R, nd = 3 + j->nf, width = j->pl->width, height = j->pl->height;
+    size_t stride = (size_t)width + 2 * PAD, p = (size_t)(y + PAD) * stride + (size_t)(x + PAD);
+    int a, c, k, o, dx, dy;
+    for (o = 0, dy = -R; dy <= R; dy++)
+        for (dx = -R; dx <= R; dx++, o++) {
+            size_t q = p + (size_t)((ptrdiff_t)dy * (ptrdiff_t)stride + dx);
+            int inside = x + dx >= 0 && x + dx < width && y + dy >= 0 && y + dy < height;
+            v->x[0][o] = 1.0f;
+            v->x[1][o] = (float)dx;
+            v->x[2][o] = (float)dy;
+            for (a = 0; a < j->nf; a++)
+                v->x[3 + a][o] = j->feat[a][q] - j->feat[a][p];
+            for (c = 0; c < 3; c++)
+                v->y[c][o] = j->img[q * 3 + c];
+            for (k = 0; k < 2; k++)
+                v->w[k][o] = inside ? dist[o] / (reg_k[k] * reg_k[k]) : DIST_CLAMP;
+        }
+    for (; o < NWP; o++) {
+        for (a = 0; a < nd; a++)
+            v->x[a][o] = 0.0f;
+        for (c = 0; c < 3; c++)
+            v->y[c][o] = 0.0f;
+        v->w[0][o] = v->w[1][o] = DIST_CLAMP;
+    }
+    for (k = 0; k < 2; k++) {
+        exp_neg(v->w[k], NWP);
+        if (v->w[k][R * SIDE + R] < MIN_WEIGHT)
+            v->w[k][R * SIDE + R] = MIN_WEIGHT;
+    }
 }
 
 static void reg_tile(void *ctx, struct tile_worker *w, int x0, int y0, int x1, int y1)
 {
     struct reg_job *j = ctx;
-    const int R = REG_R, side = 2 * REG_R + 1, nd = 3 + j->nf;
-    int width = j->pl->width, height = j->pl->height, tw = x1 - x0, th = y1 - y0;
-    int aw = tw + 2 * R, dx, dy, x, y, c, a, b, o;
-    size_t np = (size_t)tw * th;
-    float *wt = mc_malloc((np * (size_t)(side * side) + scratch_floats(j->g)) * sizeof *wt);
-    float *acc = mc_calloc((size_t)aw * (size_t)(th + 2 * R) * 4, sizeof *acc);
+    const int R = REG_R, nd = 3 + j->nf;
+    int width = j->pl->width, tw = x1 - x0, th = y1 - y0;
+    int aw = tw + 2 * R, dx, dy, x, y, c, a, b, o, k;
+    size_t np = (size_t)tw * th, l, na = (size_t)aw * (size_t)(th + 2 * R) * 4;
+    float *dist = mc_malloc((np * NWP + np + scratch_floats(j->g)) * sizeof *dist);
+    float *acc = mc_calloc(2 * na, sizeof *acc);
+    struct window *v = mc_malloc(sizeof *v);
     size_t ti = (size_t)(y0 / MC_TILE) * (size_t)j->pl->ntx + (size_t)(x0 / MC_TILE);
     (void)w;
-    if (!wt || !acc) {
+    if (!dist || !acc || !v) {
         j->pl->status = MCRT_ERR_NOMEM;
-        free(wt);
+        free(dist);
         free(acc);
+        free(v);
         return;
     }
+    /* Every offset's distances for the whole tile, then per pixel its window's. */
     for (o = 0, dy = -R; dy <= R; dy++)
-        for (dx = -R; dx <= R; dx++, o++)
-            weights(j->g, width, x0, y0, x1, y1, dx, dy, wt + (size_t)o * np,
-                    wt + (size_t)side * side * np);
+        for (dx = -R; dx <= R; dx++, o++) {
+            float *t = dist + np * NWP;
+            patch_dist(j->g, width, x0, y0, x1, y1, dx, dy, t, t + np);
+            for (l = 0; l < np; l++)
+                dist[l * NWP + (size_t)o] = t[l];
+        }
     for (y = y0; y < y1; y++)
         for (x = x0; x < x1; x++) {
-            size_t l = (size_t)(y - y0) * tw + (size_t)(x - x0), p = (size_t)y * width + x;
-            double M[MAX_DIM * MAX_DIM], B[MAX_DIM * 3], row[MAX_DIM];
-            memset(M, 0, sizeof M);
-            memset(B, 0, sizeof B);
-            /* Weighted sums over the window: X^T W X and X^T W Y, the upper triangle. */
-            for (o = 0, dy = -R; dy <= R; dy++)
-                for (dx = -R; dx <= R; dx++, o++) {
-                    size_t q = (size_t)(y + dy) * width + (size_t)(x + dx);
-                    double wq = wt[(size_t)o * np + l];
-                    if (x + dx < 0 || x + dx >= width || y + dy < 0 || y + dy >= height
-                        || wq < SKIP_WEIGHT)
-                        continue;
-                    design_row(j, q, p, dx, dy, row);
-                    for (a = 0; a < nd; a++) {
-                        double wa = wq * row[a];
-                        for (b = a; b < nd; b++)
-                            M[a * nd + b] += wa * row[b];
+            l = (size_t)(y - y0) * tw + (size_t)(x - x0);
+            window_fill(j, x, y, dist + l * NWP, v);
+            for (k = 0; k < 2; k++) {
+                double M[MAX_DIM * MAX_DIM], B[MAX_DIM * 3];
+                float beta[MAX_DIM * 3], *t0 = acc + (size_t)k * na, *wk = v->w[k];
+                /* X^T W X and X^T W Y. */
+                for (a = 0; a < nd; a++) {
+                    for (o = 0; o < NWP; o++)
+                        v->wx[a][o] = wk[o] * v->x[a][o];
+                    for (b = a; b < nd; b++)
+                        M[a * nd + b] = M[b * nd + a] = dot(v->wx[a], v->x[b]);
+                    for (c = 0; c < 3; c++)
+                        B[a * 3 + c] = dot(v->wx[a], v->y[c]);
+                }
+                solve(M, nd, B);
+                for (a = 0; a < nd * 3; a++)
+                    beta[a] = (float)B[a];
+                /* The local fit evaluated over the window, weighted by the same weights (the
+                 * collaborative step): every pixel is the mean of the fits that cover it. */
+                for (c = 0; c < 3; c++) {
+                    float *fit = v->wx[c]; /* free again: the fit, channel c */
+                    for (o = 0; o < NWP; o++)
+                        fit[o] = 0.0f;
+                    for (a = 0; a < nd; a++)
+                        for (o = 0; o < NWP; o++)
+                            fit[o] += v->x[a][o] * beta[a * 3 + c];
+                }
+                for (o = 0, dy = -R; dy <= R; dy++) {
+                    float *t = t0 + ((size_t)(y - y0 + R + dy) * aw + (size_t)(x - x0)) * 4;
+                    for (dx = 0; dx < SIDE; dx++, o++, t += 4) {
+                        float wq = wk[o];
                         for (c = 0; c < 3; c++)
-                            B[a * 3 + c] += wa * j->img[q * 3 + c];
+                            t[c] += wq * v->wx[c][o];
+                        t[3] += wq;
                     }
                 }
-            for (a = 0; a < nd; a++)
-                for (b = 0; b < a; b++)
-                    M[a * nd + b] = M[b * nd + a];
-            solve(M, nd, B);
-            /* The local fit evaluated over the window, weighted by the same weights (the
-             * collaborative step): every pixel is the mean of the fits that cover it. */
-            for (o = 0, dy = -R; dy <= R; dy++)
-                for (dx = -R; dx <= R; dx++, o++) {
-                    size_t q = (size_t)(y + dy) * width + (size_t)(x + dx);
-                    float wq = wt[(size_t)o * np + l];
-                    float *t = acc + ((size_t)(y - y0 + R + dy) * aw + (size_t)(x - x0 + R + dx)) * 4;
-                    if (x + dx < 0 || x + dx >= width || y + dy < 0 || y + dy >= height
-                        || wq < SKIP_WEIGHT)
-                        continue;
-                    design_row(j, q, p, dx, dy, row);
-                    for (c = 0; c < 3; c++) {
-                        double v = 0.0;
-                        for (a = 0; a < nd; a++)
-                            v += row[a] * B[a * 3 + c];
-                        t[c] += wq * (float)v;
-                    }
-                    t[3] += wq;
-                }
+            }
         }
-    free(wt);
+    free(dist);
+    free(v);
     j->acc[ti] = acc;
 }
 
-/* Â: the colour img regressed on the features feat with weights from guide g, into out. */
+/* The colour img (padded) regressed on the features feat (padded) with weights from guide g
+ * (k = 1), for both bandwidths: out[0] for reg_k[0], out[1] for reg_k[1]. */
 static mcrt_status regress(struct pool *pl, const struct guide *g, const float *img,
-                           const float *const *feat, int nf, float *out, mc_diag *d)
+                           const float *const *feat, int nf, float *const out[2], mc_diag *d)
 {
-    int nty = (pl->height + MC_TILE - 1) / MC_TILE, tx, ty, x, y, c;
+    int nty = (pl->height + MC_TILE - 1) / MC_TILE, tx, ty, x, y, c, k;
     size_t i, n = (size_t)pl->width * (size_t)pl->height;
     struct reg_job j;
     mcrt_status st;
@@ -354,7 +431,7 @@ static mcrt_status regress(struct pool *pl, const struct guide *g, const float *
     j.feat = feat;
     j.nf = nf;
     j.acc = mc_calloc((size_t)pl->ntx * (size_t)nty, sizeof *j.acc);
-    sum = mc_calloc(n * 4, sizeof *sum);
+    sum = mc_calloc(n * 8, sizeof *sum);
     if (!j.acc || !sum) {
         free(j.acc);
         free(sum);
@@ -370,21 +447,25 @@ static mcrt_status regress(struct pool *pl, const struct guide *g, const float *
                      + 2 * REG_R;
             int ah = (ty * MC_TILE + MC_TILE > pl->height ? pl->height - ty * MC_TILE : MC_TILE)
                      + 2 * REG_R;
+            size_t na = (size_t)aw * (size_t)ah * 4;
             if (!acc)
                 continue;
-            for (y = 0; y < ah; y++)
-                for (x = 0; x < aw; x++) {
-                    if (x0 + x < 0 || x0 + x >= pl->width || y0 + y < 0 || y0 + y >= pl->height)
-                        continue;
-                    for (c = 0; c < 4; c++)
-                        sum[((size_t)(y0 + y) * pl->width + (size_t)(x0 + x)) * 4 + c] +=
-                            acc[((size_t)y * aw + x) * 4 + c];
-                }
+            for (k = 0; k < 2; k++)
+                for (y = 0; y < ah; y++)
+                    for (x = 0; x < aw; x++) {
+                        if (x0 + x < 0 || x0 + x >= pl->width || y0 + y < 0
+                            || y0 + y >= pl->height)
+                            continue;
+                        for (c = 0; c < 4; c++)
+                            sum[(((size_t)(y0 + y) * pl->width + (size_t)(x0 + x)) * 2 + k) * 4
+                                + c] += acc[(size_t)k * na + ((size_t)y * aw + x) * 4 + c];
+                    }
             free(acc);
         }
     for (i = 0; i < n; i++)
-        for (c = 0; c < 3; c++)
-            out[i * 3 + c] = (float)(sum[i * 4 + c] / sum[i * 4 + 3]);
+        for (k = 0; k < 2; k++)
+            for (c = 0; c < 3; c++)
+                out[k][i * 3 + c] = (float)(sum[(i * 2 + k) * 4 + c] / sum[(i * 2 + k) * 4 + 3]);
     free(j.acc);
     free(sum);
     return st;
@@ -434,9 +515,11 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
      * of the mean, the mean. */
     enum { PA, PB, PVAR, PVARM, PMEAN, NPAD };
     size_t np3 = (size_t)(w + 2 * PAD) * (size_t)(h + 2 * PAD) * 3;
-    float *buf = mc_malloc((n3 * NIMG + n * (size_t)(2 * nf + 2) + np3 * NPAD) * sizeof *buf);
+    size_t np1 = np3 / 3;
+    float *buf = mc_malloc((n3 * NIMG + n * (size_t)(2 * nf + 2) + np3 * NPAD
+                            + np1 * (size_t)(2 * nf)) * sizeof *buf);
     float *img[NIMG], *pre[2][MC_NFOR_MAX_FEATURES], *fvar, *fvars, *pad[NPAD];
-    const float *cpre[2][MC_NFOR_MAX_FEATURES];
+    const float *cpre[2][MC_NFOR_MAX_FEATURES]; /* the prefiltered features, padded */
     struct pool pl;
     struct guide g;
     mcrt_status st = MCRT_OK;
@@ -445,8 +528,11 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
     for (i = 0; i < NIMG; i++)
         img[i] = buf + i * n3;
     for (f = 0; f < nf; f++)
-        for (half = 0; half < 2; half++)
-            cpre[half][f] = pre[half][f] = buf + NIMG * n3 + (size_t)(2 * f + half) * n;
+        for (half = 0; half < 2; half++) {
+            pre[half][f] = buf + NIMG * n3 + (size_t)(2 * f + half) * n;
+            cpre[half][f] = buf + NIMG * n3 + n * (size_t)(2 * nf + 2) + np3 * NPAD
+                            + np1 * (size_t)(2 * f + half);
+        }
     fvar = buf + NIMG * n3 + (size_t)(2 * nf) * n;
     fvars = fvar + n;
     for (i = 0; i < NPAD; i++)
@@ -491,6 +577,7 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
             g.f = PRE_F;
             g.k = PRE_K;
             st = nlm(&pl, &g, in->feature[half][f], 1, PRE_R, pre[half][f], d);
+            pad_copy(pre[half][f], 1, w, h, 1.0f, (float *)cpre[half][f]);
         }
     }
 
@@ -499,33 +586,40 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
     pad_copy(img[VARS], 3, w, h, 1.0f, pad[PVAR]);
     pad_copy(img[VARS], 3, w, h, 0.5f, pad[PVARM]);
     pad_copy(img[MEAN], 3, w, h, 1.0f, pad[PMEAN]);
-    for (k = 0; k < 2 && st == MCRT_OK; k++) {
-        float *ca = img[CAND + 2 * k], *cb = img[CAND + 2 * k + 1];
-        g.gc = 3;
-        g.f = REG_F;
-        g.k = reg_k[k];
-        g.var = pad[PVAR];
-        g.img = pad[PB];
-        st = regress(&pl, &g, A, cpre[1], nf, ca, d);
+    g.gc = 3;
+    g.f = REG_F;
+    g.k = 1.0f; /* the distances, to which each bandwidth applies (regress) */
+    g.var = pad[PVAR];
+    g.img = pad[PB];
+    {
+        float *const ca[2] = {img[CAND], img[CAND + 2]}, *const cb[2] = {img[CAND + 1],
+                                                                          img[CAND + 3]};
+        st = regress(&pl, &g, pad[PA], cpre[1], nf, ca, d);
         g.img = pad[PA];
         if (st == MCRT_OK)
-            st = regress(&pl, &g, B, cpre[0], nf, cb, d);
-        if (st != MCRT_OK)
-            break;
-        mse_estimate(A, B, ca, cb, img[VAR], n3, img[TMP]);
-        /* Smoothed by NL-means on the mean image, whose variance is half a half's. */
+            st = regress(&pl, &g, pad[PB], cpre[0], nf, cb, d);
+    }
+    if (st == MCRT_OK) {
+        /* Both error maps, interleaved (6 channels: the first candidate's, the second's, in
+         * TMP and SEL), smoothed in one pass by NL-means on the mean image, whose variance is
+         * half a half's, into MSE0 and MSE1 (the same interleaving). */
+        float *both = img[TMP], *sm = img[MSE0];
+        for (k = 0; k < 2; k++) {
+            mse_estimate(A, B, img[CAND + 2 * k], img[CAND + 2 * k + 1], img[VAR], n3, img[MSE1]);
+            for (i = 0; i < n3; i++)
+                both[i / 3 * 6 + (size_t)k * 3 + i % 3] = img[MSE1][i];
+        }
         g.img = pad[PMEAN];
         g.var = pad[PVARM];
         g.f = MAP_F;
         g.k = MAP_K;
-        st = nlm(&pl, &g, img[TMP], 3, MAP_R, img[MSE0 + k], d);
-    }
-    if (st == MCRT_OK) {
+        st = nlm(&pl, &g, both, 6, MAP_R, sm, d);
         /* The selection map, 0 for the first candidate, 1 for the second, smoothed the same
          * way, blends them per pixel and channel. */
-        for (i = 0; i < n3; i++)
-            img[TMP][i] = img[MSE0][i] < img[MSE1][i] ? 0.0f : 1.0f;
-        st = nlm(&pl, &g, img[TMP], 3, MAP_R, img[SEL], d);
+        for (i = 0; st == MCRT_OK && i < n3; i++)
+            img[TMP][i] = sm[i / 3 * 6 + i % 3] < sm[i / 3 * 6 + 3 + i % 3] ? 0.0f : 1.0f;
+        if (st == MCRT_OK)
+            st = nlm(&pl, &g, img[TMP], 3, MAP_R, img[SEL], d);
     }
     if (st == MCRT_OK) {
         float *fa = img[MSE0], *fb = img[MSE1]; /* reused for the blended halves */
