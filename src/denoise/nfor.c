@@ -42,6 +42,8 @@ struct guide {
     const float *img, *var;
     int gc, f;
     float k;
+    int each; /* each channel weighted by its own distance (features), else the least similar
+                 channel decides for all */
 };
 
 /* The image's size, the threads the tiles run on, and a tile's failure to get memory. */
@@ -129,7 +131,10 @@ static void patch_dist(const struct guide *g, int width, int x0, int y0, int x1,
                 col[j] += tmp[(size_t)(y + i) * tr + j];
         for (j = 0; j < tr; j++)
             col[j] *= norm;
-        for (x = 0; x < tw; x++) {
+        for (x = 0; x < tw && g->each; x++)
+            for (c = 0; c < gc; c++)
+                wt[((size_t)y * tw + x) * gc + c] = col[x * gc + c] > 0.0f ? col[x * gc + c] : 0.0f;
+        for (x = 0; x < tw && !g->each; x++) {
             float dmax = 0.0f;
             for (c = 0; c < gc; c++)
                 dmax = col[x * gc + c] > dmax ? col[x * gc + c] : dmax;
@@ -182,10 +187,10 @@ static void nlm_tile(void *ctx, struct tile_worker *w, int x0, int y0, int x1, i
 {
     struct nlm_job *j = ctx;
     int width = j->pl->width, height = j->pl->height, tw = x1 - x0, th = y1 - y0;
-    int sc = j->sc, dx, dy, x, y, c;
+    int sc = j->sc, wc = j->g->each ? sc : 1, na = sc + wc, dx, dy, x, y, c;
     size_t np = (size_t)tw * th;
-    float *wt = mc_malloc((np + scratch_floats(j->g)) * sizeof *wt);
-    double *acc = mc_calloc(np * (size_t)(sc + 1), sizeof *acc);
+    float *wt = mc_malloc((np * (size_t)wc + scratch_floats(j->g)) * sizeof *wt);
+    double *acc = mc_calloc(np * (size_t)na, sizeof *acc);
     (void)w;
     if (!wt || !acc) {
         j->pl->status = MCRT_ERR_NOMEM;
@@ -195,28 +200,33 @@ static void nlm_tile(void *ctx, struct tile_worker *w, int x0, int y0, int x1, i
     }
     for (dy = -j->r; dy <= j->r; dy++)
         for (dx = -j->r; dx <= j->r; dx++) {
-            patch_dist(j->g, width, x0, y0, x1, y1, dx, dy, wt, wt + np);
-            weights(wt, (int)np, dx == 0 && dy == 0);
+            patch_dist(j->g, width, x0, y0, x1, y1, dx, dy, wt, wt + np * (size_t)wc);
+            weights(wt, (int)np * wc, dx == 0 && dy == 0);
             for (y = y0; y < y1; y++) {
                 if (y + dy < 0 || y + dy >= height)
                     continue;
                 for (x = x0; x < x1; x++) {
                     size_t l = (size_t)(y - y0) * tw + (size_t)(x - x0);
                     const float *s = j->src + ((size_t)(y + dy) * width + (size_t)(x + dx)) * sc;
-                    if (x + dx < 0 || x + dx >= width || wt[l] == 0.0f)
+                    const float *wl = wt + l * (size_t)wc;
+                    double *al = acc + l * (size_t)na;
+                    if (x + dx < 0 || x + dx >= width)
                         continue;
-                    for (c = 0; c < sc; c++)
-                        acc[l * (sc + 1) + c] += wt[l] * s[c];
-                    acc[l * (sc + 1) + sc] += wt[l];
+                    for (c = 0; c < sc; c++) {
+                        float wq = wl[wc > 1 ? c : 0];
+                        if (wq != 0.0f)
+                            al[c] += wq * s[c];
+                    }
+                    for (c = 0; c < wc; c++)
+                        al[sc + c] += wl[c];
                 }
             }
         }
     for (y = y0; y < y1; y++)
         for (x = x0; x < x1; x++) {
-            size_t l = (size_t)(y - y0) * tw + (size_t)(x - x0);
+            const double *al = acc + ((size_t)(y - y0) * tw + (size_t)(x - x0)) * (size_t)na;
             for (c = 0; c < sc; c++)
-                j->dst[((size_t)y * width + x) * sc + c] =
-                    (float)(acc[l * (sc + 1) + c] / acc[l * (sc + 1) + sc]);
+                j->dst[((size_t)y * width + x) * sc + c] = (float)(al[c] / al[sc + (wc > 1 ? c : 0)]);
         }
     free(wt);
     free(acc);
@@ -563,23 +573,44 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
 
     /* 1. Cross prefiltering of the features (NFOR §5.1): A's feature with weights from B's, whose
      * variance, that of a half, is (f_A − f_B)²/2. */
-    for (f = 0; f < nf && st == MCRT_OK; f++) {
-        for (i = 0; i < n; i++)
-            fvar[i] = 0.5f * sq(in->feature[0][f][i] - in->feature[1][f][i]);
-        box3(fvar, 1, w, h, fvars);
-        /* The mean's padded guides serve as the single-channel guides' space here. */
-        pad_copy(fvars, 1, w, h, 1.0f, pad[PVAR]);
+    if (nf > 0) {
+        /* All the features at once, interleaved, each channel with its own weights. */
+        float *pb = mc_malloc((n * (size_t)nf * 4 + np1 * (size_t)nf * 2) * sizeof *pb);
+        float *fa = pb, *fb = fa + n * nf, *fv = fb + n * nf, *out = fv + n * nf;
+        float *gimg = out + n * nf, *gvar = gimg + np1 * nf;
+        if (!pb) {
+            free(buf);
+            return mc_fail(d, MCRT_ERR_NOMEM, "out of memory for the denoiser (%dx%d)", w, h);
+        }
+        for (f = 0; f < nf; f++) {
+            for (i = 0; i < n; i++) {
+                fa[i * nf + f] = in->feature[0][f][i];
+                fb[i * nf + f] = in->feature[1][f][i];
+                fvar[i] = 0.5f * sq(in->feature[0][f][i] - in->feature[1][f][i]);
+            }
+            box3(fvar, 1, w, h, fvars);
+            for (i = 0; i < n; i++)
+                fv[i * nf + f] = fvars[i];
+        }
+        pad_copy(fv, nf, w, h, 1.0f, gvar);
         for (half = 0; half < 2 && st == MCRT_OK; half++) {
-            pad_copy(in->feature[1 - half][f], 1, w, h, 1.0f, pad[PMEAN]);
-            g.img = pad[PMEAN];
-            g.var = pad[PVAR];
-            g.gc = 1;
+            pad_copy(half ? fa : fb, nf, w, h, 1.0f, gimg);
+            g.img = gimg;
+            g.var = gvar;
+            g.gc = nf;
             g.f = PRE_F;
             g.k = PRE_K;
-            st = nlm(&pl, &g, in->feature[half][f], 1, PRE_R, pre[half][f], d);
-            pad_copy(pre[half][f], 1, w, h, 1.0f, (float *)cpre[half][f]);
+            g.each = 1;
+            st = nlm(&pl, &g, half ? fb : fa, nf, PRE_R, out, d);
+            for (f = 0; f < nf; f++) {
+                for (i = 0; i < n; i++)
+                    pre[half][f][i] = out[i * nf + f];
+                pad_copy(pre[half][f], 1, w, h, 1.0f, (float *)cpre[half][f]);
+            }
         }
+        free(pb);
     }
+    g.each = 0;
 
     /* 2. Each half regressed on the other half's features with the other half's weights, for
      * two bandwidths; 3. their errors. */
