@@ -52,6 +52,22 @@ struct pool {
     mcrt_status status;          /* MCRT_ERR_NOMEM when a tile could not get its buffers */
 };
 
+/* The hot loops (patch distances, weights, the regression's dot products) are plain C that GCC
+ * vectorises for SSE2, the x86-64 baseline; on a processor with AVX2 the tile functions run as
+ * copies compiled for it (GCC's target attribute, chosen by __builtin_cpu_supports, as
+ * geom/bvh.c does), twice as wide. No FMA is enabled and C99 forbids contracting a·b + c, and
+ * the vectoriser never reorders a sum: both copies compute the same operations in the same
+ * order, so the image is the same bits on either. MCRT_NFOR_NO_AVX keeps to the SSE2 copy. */
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__AVX2__) && !defined(MCRT_NFOR_NO_AVX)
+#define NFOR_AVX_DISPATCH 1
+#define AVX2_TARGET __attribute__((target("avx2")))
+#endif
+#if defined(__GNUC__)
+#define ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define ALWAYS_INLINE inline
+#endif
+
 static int clampi(int v, int lo, int hi) { return v < lo ? lo : v > hi ? hi : v; }
 
 /* src (nc channels, width × height) copied times scale into dst with a border of PAD pixels on
@@ -73,7 +89,7 @@ static void pad_copy(const float *src, int nc, int width, int height, float scal
  * error below 1e-6, measured against exp() over [0, 14]), 2^-k built in the float's exponent
  * bits; 0 from k = 20 on (v > 13.5). Plain arithmetic that vectorises, and the same bits on
  * every machine, which libm's expf (a per-processor variant) does not promise. */
-static void exp_neg(float *v, int n)
+static ALWAYS_INLINE void exp_neg(float *v, int n)
 {
     int i;
     for (i = 0; i < n; i++) {
@@ -93,7 +109,7 @@ static void exp_neg(float *v, int n)
  * least similar channel decides (Tungsten takes the minimum weight). scratch holds 2·(T + 2f)²·gc floats.
  * Pixels outside the image read the padded guide's copies of its border. Each loop runs along
  * rows of contiguous floats (a row's pixels and their channels), so that it vectorises. */
-static void patch_dist(const struct guide *g, int width, int x0, int y0, int x1, int y1,
+static ALWAYS_INLINE void patch_dist(const struct guide *g, int width, int x0, int y0, int x1, int y1,
                        int dx, int dy, float *wt, float *scratch)
 {
     int f = g->f, gc = g->gc, tw = x1 - x0, th = y1 - y0, ph = th + 2 * f;
@@ -144,7 +160,7 @@ static void patch_dist(const struct guide *g, int width, int x0, int y0, int x1,
 }
 
 /* The weights of the distances patch_dist gave for the offset (0, 0) or not (centre), in place. */
-static void weights(float *wt, int n, int centre)
+static ALWAYS_INLINE void weights(float *wt, int n, int centre)
 {
     int i;
     exp_neg(wt, n);
@@ -183,7 +199,8 @@ struct nlm_job {
     float *dst;
 };
 
-static void nlm_tile(void *ctx, struct tile_worker *w, int x0, int y0, int x1, int y1)
+static ALWAYS_INLINE void nlm_tile_body(void *ctx, struct tile_worker *w, int x0, int y0, int x1,
+                                        int y1)
 {
     struct nlm_job *j = ctx;
     int width = j->pl->width, height = j->pl->height, tw = x1 - x0, th = y1 - y0;
@@ -232,6 +249,18 @@ static void nlm_tile(void *ctx, struct tile_worker *w, int x0, int y0, int x1, i
     free(acc);
 }
 
+static void nlm_tile(void *ctx, struct tile_worker *w, int x0, int y0, int x1, int y1)
+{
+    nlm_tile_body(ctx, w, x0, y0, x1, y1);
+}
+#ifdef NFOR_AVX_DISPATCH
+static AVX2_TARGET void nlm_tile_avx2(void *ctx, struct tile_worker *w, int x0, int y0, int x1,
+                                      int y1)
+{
+    nlm_tile_body(ctx, w, x0, y0, x1, y1);
+}
+#endif
+
 static mcrt_status nlm(struct pool *pl, const struct guide *g, const float *src, int sc, int r,
                        float *dst, mc_diag *d)
 {
@@ -242,6 +271,10 @@ static mcrt_status nlm(struct pool *pl, const struct guide *g, const float *src,
     j.sc = sc;
     j.r = r;
     j.dst = dst;
+#ifdef NFOR_AVX_DISPATCH
+    if (__builtin_cpu_supports("avx2"))
+        return run(pl, nlm_tile_avx2, &j, d);
+#endif
     return run(pl, nlm_tile, &j, d);
 }
 
@@ -289,7 +322,7 @@ enum { SIDE = 2 * REG_R + 1, NW = SIDE * SIDE, LANES = 8, NWP = (NW + LANES - 1)
 
 /* Σ a[o]·b[o] over the padded window, in LANES partial sums added in double at the end: the
  * same operations in the same order whatever vector width the compiler picks. */
-static double dot(const float *a, const float *b)
+static ALWAYS_INLINE double dot(const float *a, const float *b)
 {
     float s[LANES] = {0.0f};
     double t = 0.0;
@@ -320,7 +353,7 @@ struct window {
 
 /* Pixel (x, y)'s window (stride: a padded row), its distances dist (NWP of them, from
  * patch_dist with k = 1) turned into each bandwidth's weights, 0 outside the image. */
-static void window_fill(const struct reg_job *j, int x, int y, const float *dist, struct window *v)
+static ALWAYS_INLINE void window_fill(const struct reg_job *j, int x, int y, const float *dist, struct window *v)
 {
     const int R = REG_R, nd = 3 + j->nf, width = j->pl->width, height = j->pl->height;
     size_t stride = (size_t)width + 2 * PAD, p = (size_t)(y + PAD) * stride + (size_t)(x + PAD);
@@ -353,7 +386,8 @@ static void window_fill(const struct reg_job *j, int x, int y, const float *dist
     }
 }
 
-static void reg_tile(void *ctx, struct tile_worker *w, int x0, int y0, int x1, int y1)
+static ALWAYS_INLINE void reg_tile_body(void *ctx, struct tile_worker *w, int x0, int y0, int x1,
+                                        int y1)
 {
     struct reg_job *j = ctx;
     const int R = REG_R, nd = 3 + j->nf;
@@ -425,6 +459,18 @@ static void reg_tile(void *ctx, struct tile_worker *w, int x0, int y0, int x1, i
     j->acc[ti] = acc;
 }
 
+static void reg_tile(void *ctx, struct tile_worker *w, int x0, int y0, int x1, int y1)
+{
+    reg_tile_body(ctx, w, x0, y0, x1, y1);
+}
+#ifdef NFOR_AVX_DISPATCH
+static AVX2_TARGET void reg_tile_avx2(void *ctx, struct tile_worker *w, int x0, int y0, int x1,
+                                      int y1)
+{
+    reg_tile_body(ctx, w, x0, y0, x1, y1);
+}
+#endif
+
 /* The colour img (padded) regressed on the features feat (padded) with weights from guide g
  * (k = 1), for both bandwidths: out[0] for reg_k[0], out[1] for reg_k[1]. */
 static mcrt_status regress(struct pool *pl, const struct guide *g, const float *img,
@@ -447,7 +493,12 @@ static mcrt_status regress(struct pool *pl, const struct guide *g, const float *
         free(sum);
         return mc_fail(d, MCRT_ERR_NOMEM, "out of memory for the denoiser");
     }
-    st = run(pl, reg_tile, &j, d);
+#ifdef NFOR_AVX_DISPATCH
+    if (__builtin_cpu_supports("avx2"))
+        st = run(pl, reg_tile_avx2, &j, d);
+    else
+#endif
+        st = run(pl, reg_tile, &j, d);
     /* The tiles' overlapping sums, in tile order whatever the threads' order was. */
     for (ty = 0; ty < nty; ty++)
         for (tx = 0; tx < pl->ntx; tx++) {
