@@ -79,6 +79,15 @@ check_refusal "--resume with fewer passes" "half.exr: cannot resume: more passes
 sed 's/radius 0.7/radius 0.6/' "$tmp/s.mcrt" >"$tmp/other.mcrt"
 check_refusal "--resume of another scene" "half.exr: cannot resume: a render of another scene" \
     "$MCRT" --resume "$tmp/half.exr" --passes 4 --seed 3 "$tmp/other.mcrt"
+# The hash covers the files the scene reads: the same text with an edited mesh is another scene.
+mkdir "$tmp/m"
+printf 'v -1 0 -1\nv 1 0 -1\nv 0 1.5 -1\nf 1 2 3\n' >"$tmp/m/tri.obj"
+{ cat "$tmp/s.mcrt"; echo 'mesh { file "tri.obj" }'; } >"$tmp/m/s.mcrt"
+"$MCRT" --quiet --seed 3 --passes 2 --state -o "$tmp/mesh.exr" "$tmp/m/s.mcrt"
+printf 'v -1 0 -1\nv 1 0 -1\nv 0 1.4 -1\nf 1 2 3\n' >"$tmp/m/tri.obj"
+check_refusal "--resume with the scene's OBJ file edited" \
+    "mesh.exr: cannot resume: a render of another scene" \
+    "$MCRT" --resume "$tmp/mesh.exr" --passes 4 --seed 3 "$tmp/m/s.mcrt"
 run --passes 2 -o "$tmp/plain.exr"
 check_refusal "--resume of an EXR without a state" "plain.exr.*no render state" \
     run --resume "$tmp/plain.exr" --passes 4

@@ -15,6 +15,7 @@
 #include "core/atomic.h"
 #include "core/clock.h"
 #include "core/file.h"
+#include "core/hash.h"
 #include "core/names.h"
 #include "export/mitsuba.h"
 #include "export/pov.h"
@@ -35,7 +36,6 @@ struct mcrt_scene {
     struct scene s;
     mc_diag err;
     int loaded;
-    uint64_t hash;          /* of the scene's text, for render states (render/state.h) */
     char info[4096];
 };
 
@@ -113,6 +113,7 @@ static mcrt_status read_images(struct scene *sc, mc_diag *d)
             mc_diag why = *d;
             return mc_fail(d, st, "%s: %s", sc->images[i].origin, why.msg);
         }
+        sc->hash = mc_hash(sc->hash, im.rgb, (size_t)im.width * (size_t)im.height * 3 * sizeof *im.rgb);
         mc_scene_set_image(sc, i, im.rgb, im.width, im.height);
     }
     return MCRT_OK;
@@ -128,7 +129,7 @@ static mcrt_status load(mcrt_scene *s, const char *text, size_t len, const char 
     s->err.msg[0] = '\0';
     if (mc_scene_init(&s->s) != 0)
         st = mc_fail(&s->err, MCRT_ERR_NOMEM, "%s: out of memory", name);
-    s->hash = mc_state_hash(text, len);
+    s->s.hash = mc_hash(s->s.hash, text, len);
     if (st == MCRT_OK)
         st = mc_scene_parse(&s->s, text, len, name, base_dir, &s->err);
     if (st == MCRT_OK)
@@ -526,7 +527,7 @@ static void identify(mcrt_render *r, const struct render_settings *rs, int w, in
     const struct scene *s = &r->scene->s;
     struct render_state *id = &r->state;
     memset(id, 0, sizeof *id);
-    id->scene = r->scene->hash;
+    id->scene = r->scene->s.hash;
     id->width = s->film.width;
     id->height = s->film.height;
     id->crop[0] = rs->crop_x0;

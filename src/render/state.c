@@ -116,15 +116,3 @@ int mc_state_same_render(const struct render_state *a, const struct render_state
                                                             : NULL;
     return *why == NULL;
 }
-
-uint64_t mc_state_hash(const void *bytes, size_t n)
-{
-    const unsigned char *p = bytes;
-    uint64_t h = 0xcbf29ce484222325ULL;
-    size_t i;
-    for (i = 0; i < n; i++) {
-        h ^= p[i];
-        h *= 0x100000001b3ULL;
-    }
-    return h;
-}

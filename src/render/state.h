@@ -18,7 +18,7 @@
 #define MC_STATE_NAME "mcrtState"
 
 struct render_state {
-    uint64_t scene;         /* FNV-1a hash of the scene file's text */
+    uint64_t scene;         /* the scene's fingerprint: struct scene's hash (core/hash.h) */
     int width, height;      /* the scene's image */
     int crop[4];            /* the film's window x0, y0, x1, y1 (the whole image: 0, 0, W, H) */
     int spp;                /* samples per pixel of a pass */
@@ -44,9 +44,5 @@ int mc_state_parse(const char *text, struct render_state *s, const char **why);
  * passes and the crop); when not, why names the first difference (a static string). */
 int mc_state_same_render(const struct render_state *a, const struct render_state *b,
                          const char **why);
-
-/* FNV-1a 64 of n bytes (Fowler, Noll and Vo), the scene's fingerprint: not a defence against
- * a chosen collision, only against resuming or merging a render of another scene by mistake. */
-uint64_t mc_state_hash(const void *bytes, size_t n);
 
 #endif

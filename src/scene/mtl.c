@@ -9,6 +9,7 @@
 
 #include "core/alloc.h"
 #include "core/file.h"
+#include "core/hash.h"
 #include "scene/scene.h"
 #include "scene/wavefront.h"
 
@@ -409,6 +410,7 @@ mcrt_status mc_mtl_load(struct mtl_library *lib, const char *path, const char *o
     st = mc_read_file(path, MTL_MAX_BYTES, origin, &buf, &len, d);
     if (st)
         return st;
+    warn->hash = mc_hash(warn->hash, buf, len);
     st = mc_wf_lines(&m.r, buf, len, read_line, &m);
     if (!st)
         st = finish_material(&m);

@@ -4,6 +4,7 @@
 
 #include "core/alloc.h"
 #include "core/file.h"
+#include "core/hash.h"
 #include "scene/mtl.h"
 #include "scene/wavefront.h"
 
@@ -424,6 +425,7 @@ mcrt_status mc_obj_load(struct scene *s, const struct obj_mesh *m, struct obj_st
     st = mc_read_file(m->path, MC_OBJ_MAX_BYTES, m->origin, &buf, &len, d);
     if (st)
         return st;
+    s->hash = mc_hash(s->hash, buf, len);
     st = mc_wf_lines(&r.r, buf, len, read_line, &r);
     free(buf);
     mc_mtl_free(&r.lib);

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "core/alloc.h"
+#include "core/hash.h"
 
 #define MC_INTEGRATOR_NAME(id, name) [INTEGRATOR_##id] = #name,
 const char *const mc_integrator_names[INTEGRATOR_COUNT + 1] = {
@@ -17,6 +18,7 @@ int mc_scene_init(struct scene *s)
 {
     struct material def;
     memset(s, 0, sizeof *s);
+    s->hash = MC_HASH_INIT;
     s->film.width = 512;
     s->film.height = 512;
     s->film.spp = 16;

@@ -101,6 +101,9 @@ struct scene {
                                         environment (given or the default sky) last */
     size_t light_count, light_cap;
 
+    uint64_t hash;                   /* FNV-1a (core/hash.h) of the scene's inputs in the order
+                                        read: its text, each OBJ and MTL file, each image's
+                                        pixels (for render states); MC_HASH_INIT before them */
     char *warnings;                  /* about the input, one line each ending in '\n' ("file:
                                         line:col: warning: what"); NULL when none (owned) */
     size_t warnings_len;
