@@ -10,6 +10,8 @@
 #   make bench      BVH, path-tracer and photon-mapping throughput, mcrt-mpi's speed-up (not a test)
 #   make bench-error every sampler's error estimate against the truth on every scene, and the
 #                   predicted time to an error against the time taken (minutes; not a test)
+#   make crosscheck every exportable scene rendered by mcrt and Mitsuba 3, compared within their
+#                   noise (needs pip install mitsuba; not part of make test)
 #   make ref        regenerate the POV-Ray references in ref/ (needs povray; not part of make test)
 #   make install    PREFIX=/usr/local, DESTDIR honoured
 #   V=1             show full commands
@@ -79,7 +81,7 @@ UNIT_BIN := $(UNIT_SRC:tests/unit/%.c=$(O)/tests/%) $(BVH_VARIANTS:%=$(O)/tests/
 TOOL_SRC := $(wildcard tests/tools/*.c)
 TOOL_BIN := $(TOOL_SRC:tests/tools/%.c=$(O)/tests/%)
 
-.PHONY: all run test test-build check tsan fuzz bench bench-error bench-denoise denoise-figures install uninstall clean setup ref plots
+.PHONY: all run test test-build check tsan fuzz bench crosscheck bench-error bench-denoise denoise-figures install uninstall clean setup ref plots
 all: $(O)/mcrt $(O)/libmcrt.a $(if $(HAVE_MPI),$(O)/mcrt-mpi)
 
 # $(O)/config.mk, the CONFIG above, is written while this Makefile is read, and only when its text
@@ -203,6 +205,12 @@ test-build: all $(UNIT_BIN) $(TOOL_BIN)
 ref: all $(O)/tests/exr_average
 	@O=$(O) sh tests/tools/pov_ref.sh
 
+# Every scene of scenes/ and tests/crosscheck/ that `mcrt mitsuba` exports, rendered by mcrt and by
+# Mitsuba 3 and compared within both renders' noise (needs `pip install mitsuba`; never part of make
+# test). SPP, RENDERS, SHRINK, CASES=...: see tests/tools/crosscheck.sh.
+crosscheck: all
+	@O=$(O) sh tests/tools/crosscheck.sh
+
 check:
 	@$(MAKE) --no-print-directory O=build-san SETUP=0 \
 	  OPT="-O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all" \
@@ -250,6 +258,8 @@ bench: all $(O)/tests/bench $(O)/tests/bench_render $(O)/tests/bench_sppm
 	$(O)/tests/bench_render
 	$(O)/tests/bench_sppm
 	MCRT=$(O)/mcrt sh tests/tools/mpi_bench.sh
+	@if command -v python3 >/dev/null 2>&1; then python3 tests/tools/mitsuba_bench.py $(O)/mcrt --cache $(O)/bench; \
+	else echo "mitsuba_bench: no python3, so no efficiency ratio against Mitsuba 3 (then: pip install mitsuba)"; fi
 
 # Estimated over true relMSE for every sampler at 16, 64 and 256 spp on every scene, and the
 # predicted time to a target error against the time taken (issue 14).

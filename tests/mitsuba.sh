@@ -143,8 +143,9 @@ expect lens "camera { lens_radius 0.1 } film { spp 8 sampler random filter tent 
     '<sensor type="thinlens">' '<float name="aperture_radius" value="0.1"/><float name="focus_distance" value="5"/>' \
     '<sampler type="independent"><integer name="sample_count" value="8"/>' \
     '<rfilter type="tent"><float name="radius" value="1"/></rfilter>'
-expect sobol "film { spp 8 sampler sobol filter gaussian } sphere { } $lit" "ldsampler, gaussian" \
+expect sobol "film { spp 16 sampler sobol filter gaussian } sphere { } $lit" "ldsampler, gaussian" \
     '<sampler type="ldsampler">' '<rfilter type="gaussian"><float name="stddev" value="0.5"/></rfilter>'
+expect sobol-8 "film { spp 8 sampler sobol } sphere { } $lit" "sobol, 8 not a power of 4" '<sampler type="multijitter">'
 expect multijitter "film { spp 8 } sphere { } $lit" "stratified, 8 not a square" '<sampler type="multijitter">'
 expect depth "integrator { max_depth 3 rr_depth 2 } sphere { } $lit" "max_depth counts the camera ray" \
     '<integrator type="path"><integer name="max_depth" value="4"/><integer name="rr_depth" value="2"/></integrator>'

@@ -106,19 +106,22 @@ static void put_integrator(FILE *f, const struct scene *s)
             depth, it->rr_depth);
 }
 
-/* Random → independent; stratified → stratified (jittered cells, the count a square) when spp is
- * a square, else multijitter; Owen-scrambled Sobol → ldsampler (Mitsuba's scrambled (0,2)
- * sequence, which rounds the count up to a power of two). */
+/* Random → independent; stratified → stratified (jittered cells) when spp is a square, else
+ * multijitter; Owen-scrambled Sobol → ldsampler (Mitsuba's scrambled (0,2) sequence) when spp is
+ * a power of 4, else multijitter: Mitsuba rounds the others' counts up (stratified to a square,
+ * ldsampler to a square power of two), which would change the noise. */
 static void put_sampler(FILE *f, const struct film_desc *film)
 {
     const char *type = "independent";
-    int root = 1;
+    int root = 1, square, power4;
     while ((long)(root + 1) * (root + 1) <= film->spp)
         root++;
+    square = (long)root * root == film->spp;
+    power4 = square && (root & (root - 1)) == 0;
     if (film->sampler == SAMPLER_STRATIFIED)
-        type = (long)root * root == film->spp ? "stratified" : "multijitter";
+        type = square ? "stratified" : "multijitter";
     else if (film->sampler == SAMPLER_SOBOL)
-        type = "ldsampler";
+        type = power4 ? "ldsampler" : "multijitter";
     fprintf(f, "    <sampler type=\"%s\"><integer name=\"sample_count\" value=\"%d\"/></sampler>\n",
             type, film->spp);
 }

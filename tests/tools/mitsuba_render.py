@@ -2,11 +2,14 @@
 """mitsuba_render.py: render a scene written by `mcrt mitsuba` with Mitsuba 3 (variant scalar_rgb).
 
   mitsuba_render.py SCENE.xml OUT.exr [--spp N] [--renders K] [--threads T] [--seed S]
-                    [--variance VAR.exr] [--time TIME.txt]
+                    [--variance VAR.exr [--add-variance MCRT.exr]] [--time TIME.txt]
 
 K renders with seeds S, S+1, ... are averaged into OUT.exr; with --variance, the variance of that
 mean per pixel and channel (the renders' sample variance / K, K >= 2) goes to VAR.exr, the
-reference's own noise for `mcrt diff`. --time writes the CPU seconds of the renders (the
+reference's own noise for `mcrt diff`. --add-variance adds the variance layer of an mcrt render of
+the same scene (`mcrt --aov variance`) into VAR.exr, the variance of the two images' difference,
+and prints 4 standard errors of the mean of that difference over the pixels and channels (the
+square root of the summed variances over their count): `mcrt diff --max-bias`'s bound. --time writes the CPU seconds of the renders (the
 process's user + system time spent in mi.render, scene loading excluded). --threads 1 renders on
 one thread (drjit.set_thread_count; Mitsuba's scalar variants then trace one ray at a time).
 """
@@ -25,6 +28,7 @@ def main():
     ap.add_argument("--threads", type=int, default=0)
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--variance")
+    ap.add_argument("--add-variance")
     ap.add_argument("--time")
     a = ap.parse_args()
     try:
@@ -34,6 +38,7 @@ def main():
         sys.stderr.write("mitsuba_render.py: Mitsuba 3 is not installed (pip install mitsuba)\n")
         return 3
     mi.set_variant("scalar_rgb")
+    mi.set_log_level(mi.LogLevel.Error)  # stdout carries the bias bound
     if a.threads > 0:
         dr.set_thread_count(a.threads)
     scene = mi.load_file(a.scene)
@@ -55,8 +60,15 @@ def main():
         if n < 2:
             sys.stderr.write("mitsuba_render.py: --variance needs --renders 2 or more\n")
             return 2
-        var = (total2 - n * mean * mean) / (n - 1) / n
-        mi.Bitmap(dr.maximum(var, 0.0)).write(a.variance)
+        var = dr.maximum((total2 - n * mean * mean) / (n - 1) / n, 0.0)
+        if a.add_variance:
+            layers = dict(mi.Bitmap(a.add_variance).split())
+            if "variance" not in layers:
+                sys.stderr.write("mitsuba_render.py: %s has no variance layer\n" % a.add_variance)
+                return 2
+            var = var + mi.TensorXf(layers["variance"])
+            print("%.4g" % (4.0 * dr.sqrt(dr.sum(var.array)) / len(var.array)))
+        mi.Bitmap(var).write(a.variance)
     if a.time:
         with open(a.time, "w") as f:
             f.write("%.3f\n" % cpu)

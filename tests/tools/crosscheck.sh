@@ -1,0 +1,67 @@
+#!/bin/sh
+# crosscheck.sh (make crosscheck; needs Mitsuba 3 from PyPI, so never part of make test): every
+# scene of scenes/ and tests/crosscheck/ that `mcrt mitsuba` exports is rendered by mcrt and by
+# Mitsuba 3 (scalar_rgb) at SPP samples per pixel, the film divided by SHRINK, and compared with
+# `mcrt diff`. The tolerance is the two renders' own noise: mcrt's variance layer (of its pixel
+# means) plus Mitsuba's, estimated from RENDERS independent renders of SPP/RENDERS samples each
+# (their sample variance / RENDERS, RENDERS - 1 degrees of freedom: 15 by default, so that the
+# estimate's own noise barely widens the z-test's tails); the per-pixel z-test (Sidak alpha 0.01,
+# 99.75% of pixels) and the image's mean difference against 4 standard errors of that mean
+# (sqrt of the summed variances over the pixel and channel count). A scene that disagrees is a
+# finding: one renderer or the mapping (mcrt(1), `mcrt mitsuba`) is wrong, or a documented
+# difference (rough glass, rough plastic) shows. The z picture of a failure is kept in OUT.
+#   SPP=64 RENDERS=16 SHRINK=2 OUT=build/crosscheck CASES="cornell glossy" make crosscheck
+O=${O:-build}
+MCRT=$(cd "$O" && pwd)/mcrt
+SPP=${SPP:-64}
+RENDERS=${RENDERS:-16}
+SHRINK=${SHRINK:-2}
+OUT=${OUT:-$O/crosscheck}
+PY=$(pwd)/tests/tools/mitsuba_render.py
+# Where both renders have no noise (a constant sky seen directly), they still differ by the
+# rounding of float sums of the samples: 2^-24 relative per addition, 1e-6 for radiances up to 16.
+FLOOR=1e-6
+. tests/outputs.sh.inc
+
+if ! python3 -c 'import mitsuba' 2>/dev/null; then
+    echo "crosscheck: Mitsuba 3 is not installed: pip install mitsuba (its scalar_rgb variant needs no LLVM)"
+    exit 1
+fi
+mkdir -p "$OUT"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+agree=0 disagree=0 refused=0
+: >"$OUT/summary"
+for scene in scenes/*.mcrt tests/crosscheck/*.mcrt; do
+    name=$(basename "$scene" .mcrt)
+    if [ -n "$CASES" ] && ! echo " $CASES " | grep -q " $name "; then continue; fi
+    # The scene with its film shrunk, in a copy of the scene folders so that the meshes and
+    # maps it names resolve as from its own.
+    dir=$(dirname "$scene")
+    rm -rf "$tmp/root" && mkdir -p "$tmp/root/scenes" "$tmp/root/tests/crosscheck" &&
+        cp -R scenes/. "$tmp/root/scenes/" && cp -R tests/crosscheck/. "$tmp/root/tests/crosscheck/"
+    film_shrink "$scene" "$SHRINK" >"$tmp/root/$dir/$name.cc.mcrt"
+    src=$tmp/root/$dir/$name.cc.mcrt
+    if ! "$MCRT" mitsuba "$src" -o "$tmp/$name.xml" 2>"$tmp/err"; then
+        echo "$name: not exported: $(sed 's|.*/||' "$tmp/err")" | tee -a "$OUT/summary"
+        refused=$((refused + 1))
+        continue
+    fi
+    start=$(date +%s)
+    "$MCRT" --quiet --spp "$SPP" --aov variance -o "$tmp/mc.exr" "$src" || exit 1
+    mid=$(date +%s)
+    bound=$(python3 "$PY" "$tmp/$name.xml" "$OUT/$name-mitsuba.exr" --spp $((SPP / RENDERS)) \
+        --renders "$RENDERS" --variance "$OUT/$name-var.exr" --add-variance "$tmp/mc.exr") || exit 1
+    end=$(date +%s)
+    cp "$tmp/mc.exr" "$OUT/$name-mcrt.exr"
+    rm -f "$OUT/$name-mcrt.exr.z.png"
+    if "$MCRT" diff "$OUT/$name-mcrt.exr" "$OUT/$name-mitsuba.exr" --variance "$OUT/$name-var.exr" \
+        --floor "$FLOOR" --max-bias "$bound" >"$tmp/diff" 2>&1; then
+        verdict=agree agree=$((agree + 1))
+    else
+        verdict=DISAGREE disagree=$((disagree + 1))
+    fi
+    echo "$name: $verdict (mcrt $((mid - start)) s, Mitsuba $((end - mid)) s; bias bound $bound)" | tee -a "$OUT/summary"
+    sed 's/^/    /' "$tmp/diff" | tee -a "$OUT/summary"
+done
+echo "$agree agree, $disagree disagree, $refused not exported (SPP=$SPP RENDERS=$RENDERS SHRINK=$SHRINK; images in $OUT)"
