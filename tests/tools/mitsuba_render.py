@@ -2,14 +2,18 @@
 """mitsuba_render.py: render a scene written by `mcrt mitsuba` with Mitsuba 3 (variant scalar_rgb).
 
   mitsuba_render.py SCENE.xml OUT.exr [--spp N] [--renders K] [--threads T] [--seed S]
-                    [--variance VAR.exr [--add-variance MCRT.exr]] [--time TIME.txt]
+                    [--variance VAR.exr [--add-variance MCRT.exr [--blocks N PREFIX]]]
+                    [--time TIME.txt]
 
 K renders with seeds S, S+1, ... are averaged into OUT.exr; with --variance, the variance of that
 mean per pixel and channel (the renders' sample variance / K, K >= 2) goes to VAR.exr, the
 reference's own noise for `mcrt diff`. --add-variance adds the variance layer of an mcrt render of
 the same scene (`mcrt --aov variance`) into VAR.exr, the variance of the two images' difference,
 and prints 4 standard errors of the mean of that difference over the pixels and channels (the
-square root of the summed variances over their count): `mcrt diff --max-bias`'s bound. --time writes the CPU seconds of the renders (the
+square root of the summed variances over their count): `mcrt diff --max-bias`'s bound. --blocks
+also writes the means over blocks of N x N pixels of the mcrt image, of OUT and of the variance
+(the block's summed variance / N^4: pixels are independent) to PREFIX-mcrt.exr, PREFIX-mitsuba.exr
+and PREFIX-var.exr, for a z-test whose means average N^2 times the samples. --time writes the CPU seconds of the renders (the
 process's user + system time spent in mi.render, scene loading excluded). --threads 1 renders on
 one thread (drjit.set_thread_count; Mitsuba's scalar variants then trace one ray at a time).
 """
@@ -17,6 +21,18 @@ import argparse
 import os
 import sys
 import time
+
+
+def blocks(mi, t, n, scale):
+    """The sums over n x n blocks of tensor t (height, width, 3), times scale."""
+    h, w = t.shape[0] // n, t.shape[1] // n
+    a, width, out = t.array, t.shape[1], [0.0] * (w * h * 3)
+    for y in range(h * n):
+        for x in range(w * n):
+            i, j = (y * width + x) * 3, ((y // n) * w + x // n) * 3
+            for c in range(3):
+                out[j + c] += a[i + c]
+    return mi.TensorXf([v * scale for v in out], shape=(h, w, 3))
 
 
 def main():
@@ -29,6 +45,7 @@ def main():
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--variance")
     ap.add_argument("--add-variance")
+    ap.add_argument("--blocks", nargs=2, metavar=("N", "PREFIX"))
     ap.add_argument("--time")
     a = ap.parse_args()
     try:
@@ -68,6 +85,12 @@ def main():
                 return 2
             var = var + mi.TensorXf(layers["variance"])
             print("%.4g" % (4.0 * dr.sqrt(dr.sum(var.array)) / len(var.array)))
+            if a.blocks:
+                n, prefix = int(a.blocks[0]), a.blocks[1]
+                mc = mi.TensorXf(layers["<root>"])
+                mi.Bitmap(blocks(mi, mc, n, 1.0 / n ** 2)).write(prefix + "-mcrt.exr")
+                mi.Bitmap(blocks(mi, mean, n, 1.0 / n ** 2)).write(prefix + "-mitsuba.exr")
+                mi.Bitmap(blocks(mi, var, n, 1.0 / n ** 4)).write(prefix + "-var.exr")
         mi.Bitmap(var).write(a.variance)
     if a.time:
         with open(a.time, "w") as f:
