@@ -18,8 +18,7 @@ static const char usage[] =
     "usage: mcrt converge [options] SCENE\n"
     "Render SCENE at a ladder of budgets, each with a fresh seed, and write DIR/NAME-converge.csv\n"
     "(estimator, sampler, denoise, spp, seconds, MSE, relMSE, estimated relMSE) and a log-log\n"
-    "plot of\n"
-    "relMSE against seconds, the true one beside the renders' own estimate (dashed),\n"
+    "plot of relMSE against seconds, the true one beside the renders' own estimate (dashed),\n"
     "DIR/NAME-converge.png (with gnuplot, if installed).\n"
     "\n"
     "options:\n"
@@ -31,7 +30,8 @@ static const char usage[] =
     "                      consistent estimator integrator=path,sppm (a ladder of passes for\n"
     "                      sppm), the path tracer's strategies integrator=mis,bsdf,light,\n"
     "                      the raw image against the denoised one denoise=off,on (mcrt(1),\n"
-    "                      --denoise; its seconds include the denoiser's), or sampler=";
+    "                      --denoise; its seconds include the denoiser's), or\n"
+    "                      sampler=";
 /* The help after the sampler names. */
 static const char usage_tail[] =
     "\n"
