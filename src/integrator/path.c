@@ -21,25 +21,22 @@ static inline vec3 sample_direct(const struct scene *s, const struct integrator_
     return L;
 }
 
-/* Weight of light found by BSDF sampling (pdf bsdf_pdf at the previous vertex prev_p, a non-delta
- * bounce): with MIS, the power heuristic against the n light samples that could also have
- * produced it; with one strategy alone, all or nothing. */
+/* Weight of light found by BSDF sampling (pdf bsdf_pdf at the previous vertex prev_p with shading
+ * normal prev_n, a non-delta bounce): with MIS, the power heuristic against the light samples
+ * that could also have produced it; with one strategy alone, all or nothing. */
 static float emitted_weight(const struct scene *s, const struct integrator_desc *cfg, int light,
-                            vec3 prev_p, float bsdf_pdf, const struct ray *r, float t,
+                            vec3 prev_p, vec3 prev_n, float bsdf_pdf, const struct ray *r, float t,
                             const struct surface *sf)
 {
-    float light_pdf;
     if (cfg->strategy != STRATEGY_MIS)
         return cfg->strategy == STRATEGY_BSDF ? 1.0f : 0.0f;
-    light_pdf = mc_alias_pmf(&s->light_select, (size_t)light)
-                * mc_light_pdf(&s->light_scene, &s->lights[light], prev_p, r->time, r->d, t, sf);
-    return power_heuristic(bsdf_pdf, (float)cfg->light_samples * light_pdf);
+    return emitted_mis_weight(s, cfg->light_samples, light, prev_p, prev_n, bsdf_pdf, r, t, sf);
 }
 
 static inline vec3 radiance(const struct scene *s, const struct integrator_desc *cfg, struct ray r,
                             struct sampler *smp, uint64_t *rays, unsigned F)
 {
-    vec3 L = v3s(0.0f), beta = v3s(1.0f), prev_p = r.o;
+    vec3 L = v3s(0.0f), beta = v3s(1.0f), prev_p = r.o, prev_n = v3s(0.0f);
     float eta_scale = 1.0f, prev_pdf = 0.0f;
     int depth = 0, specular = 1; /* the camera ray counts as specular: its emission is not MIS'd */
     for (;;) {
@@ -55,7 +52,7 @@ static inline vec3 radiance(const struct scene *s, const struct integrator_desc 
         if (!trace(s, &r, &h, F)) {
             if (mc_features_need_mis(F) && s->env_light >= 0) {
                 float w = specular ? 1.0f
-                                   : emitted_weight(s, cfg, s->env_light, prev_p, prev_pdf, &r,
+                                   : emitted_weight(s, cfg, s->env_light, prev_p, prev_n, prev_pdf, &r,
                                                     INFINITY, NULL);
                 vec3 Le = mc_environment_radiance(&s->lights[s->env_light], r.d);
                 L = v3_add(L, v3_scale(v3_mul(beta, Le), w));
@@ -69,7 +66,8 @@ static inline vec3 radiance(const struct scene *s, const struct integrator_desc 
             vec3 Le = mc_light_emitted(pr, &sf);
             if (!v3_is_zero(Le)) {
                 float w = specular ? 1.0f
-                                   : emitted_weight(s, cfg, pr->light, prev_p, prev_pdf, &r, h.t, &sf);
+                                   : emitted_weight(s, cfg, pr->light, prev_p, prev_n, prev_pdf, &r, h.t,
+                                                   &sf);
                 L = v3_add(L, v3_scale(v3_mul(beta, Le), w));
             }
         }
@@ -99,6 +97,7 @@ static inline vec3 radiance(const struct scene *s, const struct integrator_desc 
         specular = bs.delta;
         prev_pdf = bs.pdf;
         prev_p = sf.p;
+        prev_n = sf.ns;
         r.o = ray_spawn(sf.p, side_normal(sf.ng, wi), sf.err);
         r.d = wi;
         r.tmax = INFINITY;

@@ -63,18 +63,32 @@ static inline int through_surface(const struct bsdf *b, vec3 ng, vec3 wo, vec3 w
     return !(v3_dot(wo, ng) * v3_dot(wi, ng) > 0.0f) && !mc_bsdf_transmits(b);
 }
 
-/* One shadow ray of next-event estimation, one of n: a light chosen by power, a point on it,
- * weighted against BSDF sampling when mis is nonzero (and the light is not a delta light).
- * Returns the contribution before the path throughput. */
+/* The MIS weight of emission from `light` that a BSDF sample of pdf bsdf_pdf from the point p
+ * with shading normal n found along r (at distance t on surface sf; the environment: INFINITY,
+ * NULL), against the n_samples light samples there: the light's selection pmf at that same p and
+ * n (light/select.h) times its solid-angle pdf. */
+static inline float emitted_mis_weight(const struct scene *s, int n_samples, int light, vec3 p,
+                                       vec3 n, float bsdf_pdf, const struct ray *r, float t,
+                                       const struct surface *sf)
+{
+    float light_pdf = (float)mc_light_select_pmf(&s->light_select, p, n, light)
+                      * mc_light_pdf(&s->light_scene, &s->lights[light], p, r->time, r->d, t, sf);
+    return power_heuristic(bsdf_pdf, (float)n_samples * light_pdf);
+}
+
+/* One shadow ray of next-event estimation, one of n: a light chosen for sf's point and shading
+ * normal (light/select.h), a point on it, weighted against BSDF sampling when mis is nonzero (and
+ * the light is not a delta light). Returns the contribution before the path throughput. */
 static inline vec3 light_sample(const struct scene *s, const struct surface *sf, float time,
                                 const frame *fr, const struct bsdf *b, vec3 wo,
                                 struct sampler *smp, uint64_t *rays, int n, unsigned F, int mis)
 {
     struct light_sample ls;
     struct ray shadow;
-    float pmf, light_pdf, weight;
+    double pmf;
+    float light_pdf, weight;
     vec3 wi, f, target;
-    int li = mc_alias_sample(&s->light_select, mc_sampler_1d_double(smp), &pmf);
+    int li = mc_light_select_sample(&s->light_select, sf->p, sf->ns, mc_sampler_1d_double(smp), &pmf);
     vec2 u = mc_sampler_2d(smp);
     if (li < 0 || !mc_light_sample(&s->light_scene, &s->lights[li], sf->p, time, u, &ls)
         || v3_is_zero(ls.L) || through_surface(b, sf->ng, frame_to_world(fr, wo), ls.wi))
@@ -103,7 +117,7 @@ static inline vec3 light_sample(const struct scene *s, const struct surface *sf,
     ++*rays;
     if (occluded(s, &shadow, F))
         return v3s(0.0f);
-    light_pdf = pmf * ls.pdf;
+    light_pdf = (float)pmf * ls.pdf;
     weight = !mis || ls.delta ? 1.0f
                               : power_heuristic((float)n * light_pdf, mc_bsdf_pdf(b, wo, wi));
     return v3_scale(v3_mul(f, ls.L), weight / ((float)n * light_pdf));

@@ -145,14 +145,11 @@ static vec3 direct(const struct pass_ctx *c, const struct surface *sf, const fra
 }
 
 /* The MIS weight of emission from light `light` found by a BSDF sample of pdf bsdf_pdf from
- * prev_p. */
-static float emitted_weight(const struct pass_ctx *c, int light, vec3 prev_p, float bsdf_pdf,
-                            const struct ray *r, float t, const struct surface *sf)
+ * prev_p, whose shading normal is prev_n. */
+static float emitted_weight(const struct pass_ctx *c, int light, vec3 prev_p, vec3 prev_n,
+                            float bsdf_pdf, const struct ray *r, float t, const struct surface *sf)
 {
-    const struct scene *s = c->s;
-    float light_pdf = mc_alias_pmf(&s->light_select, (size_t)light)
-                      * mc_light_pdf(&s->light_scene, &s->lights[light], prev_p, r->time, r->d, t, sf);
-    return power_heuristic(bsdf_pdf, (float)c->cfg->light_samples * light_pdf);
+    return emitted_mis_weight(c->s, c->cfg->light_samples, light, prev_p, prev_n, bsdf_pdf, r, t, sf);
 }
 
 /* The light a BSDF sample from the visible point finds directly (MIS-weighted): the other half of
@@ -181,7 +178,7 @@ static vec3 bsdf_emission(const struct pass_ctx *c, const struct surface *sf, co
             return v3s(0.0f);
         vec3 Le = mc_environment_radiance(&s->lights[s->env_light], r.d);
         return v3_scale(v3_mul(bs.weight, Le),
-                        emitted_weight(c, s->env_light, sf->p, bs.pdf, &r, INFINITY, NULL));
+                        emitted_weight(c, s->env_light, sf->p, sf->ns, bs.pdf, &r, INFINITY, NULL));
     } else {
         struct surface lsf;
         const struct prim *pr = &s->prims[h.prim];
@@ -193,7 +190,7 @@ static vec3 bsdf_emission(const struct pass_ctx *c, const struct surface *sf, co
         if (v3_is_zero(Le))
             return v3s(0.0f);
         return v3_scale(v3_mul(bs.weight, Le),
-                        emitted_weight(c, pr->light, sf->p, bs.pdf, &r, h.t, &lsf));
+                        emitted_weight(c, pr->light, sf->p, sf->ns, bs.pdf, &r, h.t, &lsf));
     }
 }
 
@@ -217,7 +214,7 @@ static void camera_pixel(const struct pass_ctx *c, struct tile_worker *w, int x,
     struct vpoint *v = &st->vp[i];
     struct sampler smp;
     struct ray r;
-    vec3 L = v3s(0.0f), beta = v3s(1.0f), prev_p;
+    vec3 L = v3s(0.0f), beta = v3s(1.0f), prev_p, prev_n = v3s(0.0f);
     vec2 off;
     float prev_pdf = 0.0f, eta_scale = 1.0f;
     int depth = 0, specular = 1;
@@ -250,7 +247,7 @@ static void camera_pixel(const struct pass_ctx *c, struct tile_worker *w, int x,
         if (!trace(s, &r, &h, c->motion)) {
             if (s->env_light >= 0) {
                 float wt = specular || !c->mis ? 1.0f
-                                               : emitted_weight(c, s->env_light, prev_p, prev_pdf,
+                                               : emitted_weight(c, s->env_light, prev_p, prev_n, prev_pdf,
                                                                 &r, INFINITY, NULL);
                 Le = mc_environment_radiance(&s->lights[s->env_light], r.d);
                 L = v3_add(L, v3_scale(v3_mul(beta, Le), wt));
@@ -262,7 +259,8 @@ static void camera_pixel(const struct pass_ctx *c, struct tile_worker *w, int x,
         Le = mc_light_emitted(pr, &sf);
         if (!v3_is_zero(Le)) {
             float wt = specular || !c->mis ? 1.0f
-                                           : emitted_weight(c, pr->light, prev_p, prev_pdf, &r, h.t, &sf);
+                                           : emitted_weight(c, pr->light, prev_p, prev_n, prev_pdf, &r,
+                                                            h.t, &sf);
             L = v3_add(L, v3_scale(v3_mul(beta, Le), wt));
         }
         if (depth == cfg->max_depth)
@@ -311,6 +309,7 @@ static void camera_pixel(const struct pass_ctx *c, struct tile_worker *w, int x,
         specular = bs.delta;
         prev_pdf = bs.pdf;
         prev_p = sf.p;
+        prev_n = sf.ns;
         r.o = ray_spawn(sf.p, side_normal(sf.ng, wi), sf.err);
         r.d = wi;
         r.tmax = INFINITY;
@@ -399,7 +398,7 @@ static void trace_photon(const struct pass_ctx *c, struct chunk *ch, uint64_t in
     float pmf;
     int li, hits, maxd = c->cfg->max_depth;
     pcg32_seed(&g, mc_hash3(c->seed, (uint64_t)c->pass, index), 0x70686f746f6eULL);
-    li = mc_alias_sample(&s->light_select, pcg32_double(&g), &pmf);
+    li = mc_alias_sample(&s->light_select.power, pcg32_double(&g), &pmf); /* photons: by power */
     if (li < 0 || !(pmf > 0.0f))
         return;
     up.x = pcg32_float(&g);

@@ -12,6 +12,31 @@ double mc_area_light_power(const struct light_scene *s, const struct light *l)
     return MC_PI * sides * mc_prim_area(p) * v3_avg(p->emit);
 }
 
+/* A planar emitter's normals are all its front normal (flip applied), which sampling any point
+ * gives; a sphere's point every way, and so do a moving emitter's, whose rotation over the shutter
+ * is not bounded here. */
+int mc_area_light_bounds(const struct light_scene *s, const struct light *l, struct light_bounds *b)
+{
+    const struct prim *p = &s->prims[l->prim];
+    b->box = mc_prim_bounds(p);
+    b->axis = v3(0.0f, 0.0f, 1.0f);
+    b->cos_o = -1.0f;
+    b->cos_e = 0.0f;
+    b->two_sided = (p->flags & PRIM_TWO_SIDED) != 0;
+    if (p->kind == PRIM_SPHERE)
+        b->phi = MC_PI * MC_PI * p->p[1].x * p->p[1].x * v3_avg(p->emit);
+    else {
+        b->phi = MC_PI * mc_prim_area(p) * v3_avg(p->emit);
+        mc_prim_sample_area(p, v2(0.5f, 0.5f), &b->axis);
+        b->cos_o = 1.0f;
+    }
+    if (p->motion) {
+        b->box = mc_motion_bounds(&s->motions[p->motion - 1], b->box, s->shutter[0], s->shutter[1]);
+        b->cos_o = -1.0f;
+    }
+    return 1;
+}
+
 /* Whether light leaves primitive p's surface with front normal n toward direction w. */
 static int emits_toward(const struct prim *p, vec3 n, vec3 w)
 {

@@ -15,6 +15,13 @@ double mc_environment_light_power(const struct light_scene *s, const struct ligh
     return MC_PI * s->radius * s->radius * 0.25 * integral * v3_avg(l->intensity);
 }
 
+int mc_environment_light_bounds(const struct light_scene *s, const struct light *l,
+                                struct light_bounds *b)
+{
+    (void)s, (void)l, (void)b;
+    return 0;
+}
+
 vec3 mc_environment_radiance(const struct light *l, vec3 d)
 {
     if (!l->map)

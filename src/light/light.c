@@ -18,6 +18,16 @@ double mc_light_power(const struct light_scene *s, const struct light *l)
     return 0.0;
 }
 
+int mc_light_bounds(const struct light_scene *s, const struct light *l, struct light_bounds *b)
+{
+    switch (l->kind) {
+#define X(kind, name) case kind: return mc_##name##_light_bounds(s, l, b);
+        MC_LIGHTS(X)
+#undef X
+    }
+    return 0;
+}
+
 int mc_light_sample(const struct light_scene *s, const struct light *l, vec3 p, float time,
                     vec2 u, struct light_sample *out)
 {

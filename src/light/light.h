@@ -1,6 +1,6 @@
 /* light.h: emitters — point lights, area lights (emitting primitives) and the environment
- * (constant or an image map, light/envmap.h) — with sampling by solid angle. Lights are chosen in proportion to their power by an
- * alias table (sample/alias.h) that the scene holds. */
+ * (constant or an image map, light/envmap.h) — with sampling by solid angle, and the bounds by
+ * which a shading point's light is chosen (light/select.h). */
 #ifndef MCRT_LIGHT_H
 #define MCRT_LIGHT_H
 
@@ -56,6 +56,23 @@ struct light_scene {
     const struct motion *motions;
     float radius;
     vec3 center;     /* the centre of that sphere: the environment's emission disk faces it */
+    float shutter[2];/* the camera's: moving emitters are bounded over it */
+};
+
+/* Where a light is and where it sends light, for choosing among lights by their importance to a
+ * shading point (Conty Estevez and Kulla 2018, §4.1; light/select.h): every emitting point lies in
+ * box; every emitting normal lies within θo of axis (cos_o = −1: any normal), and each sends
+ * light within θe of its normal (a Lambertian emitter: θe = π/2, cos_e = 0); two_sided: the
+ * normals' opposites too. phi scales the importance so that phi·cos θ'·cos θi/d² estimates π
+ * times the irradiance the light gives a point at distance d: π·L·A for a planar emitter of
+ * radiance L and area A (per side), π·L·πr² for a sphere (its silhouette's area, since θo = π
+ * lets every point see a full cos θ' = 1), π·I for a point light of intensity I. */
+struct light_bounds {
+    struct aabb box;
+    vec3 axis;
+    float cos_o, cos_e;
+    float phi;
+    int two_sided;
 };
 
 /* A sample toward a light from a shading point. */
@@ -94,6 +111,9 @@ int mc_light_sample_emission(const struct light_scene *s, const struct light *l,
 
 /* Scalar power of a light (mean over RGB channels), for selection. */
 double mc_light_power(const struct light_scene *s, const struct light *l);
+/* The bounds of l (a moving emitter over the whole shutter); 0 for a light without bounds (the
+ * environment), which is chosen apart. */
+int mc_light_bounds(const struct light_scene *s, const struct light *l, struct light_bounds *b);
 /* Sample a direction toward l from point p at scene time `time` (a moving emitter is sampled where
  * it is then). Returns 0 when there is no sample (pdf 0, or the
  * sampled point shows p its non-emitting side). */

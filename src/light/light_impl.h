@@ -8,6 +8,8 @@
 
 #define MC_LIGHT_DECLARE(kind, name)                                                           \
     double mc_##name##_light_power(const struct light_scene *s, const struct light *l);        \
+    int mc_##name##_light_bounds(const struct light_scene *s, const struct light *l,           \
+                                 struct light_bounds *b);                                      \
     int mc_##name##_light_sample(const struct light_scene *s, const struct light *l, vec3 p,    \
                                  float time, vec2 u, struct light_sample *out);                \
     float mc_##name##_light_pdf(const struct light_scene *s, const struct light *l, vec3 p,     \

@@ -9,6 +9,19 @@ double mc_point_light_power(const struct light_scene *s, const struct light *l)
     return 4.0f * MC_PI * v3_avg(l->intensity);
 }
 
+int mc_point_light_bounds(const struct light_scene *s, const struct light *l,
+                          struct light_bounds *b)
+{
+    (void)s;
+    b->box.lo = b->box.hi = l->position;
+    b->axis = v3(0.0f, 0.0f, 1.0f);
+    b->cos_o = -1.0f; /* every direction */
+    b->cos_e = 0.0f;
+    b->phi = MC_PI * v3_avg(l->intensity);
+    b->two_sided = 0;
+    return 1;
+}
+
 int mc_point_light_sample(const struct light_scene *s, const struct light *l, vec3 p, float time,
                           vec2 u, struct light_sample *out)
 {

@@ -665,14 +665,15 @@ static void finish_camera(struct parser *p, struct block *b)
              "'look'");
 }
 
-enum { INT_METHOD, INT_MAX_DEPTH, INT_RR_DEPTH, INT_LIGHT_SAMPLES, INT_STRATEGY, INT_PHOTONS,
-       INT_RADIUS, INT_ALPHA };
+enum { INT_METHOD, INT_MAX_DEPTH, INT_RR_DEPTH, INT_LIGHT_SAMPLES, INT_STRATEGY, INT_LIGHT_SELECT,
+       INT_PHOTONS, INT_RADIUS, INT_ALPHA };
 static const struct key integrator_keys[] = {
     {"method", V_CHOICE, 0, 0, NULL, mc_integrator_names, NULL},
     {"max_depth", V_INT, 0, 65536, NULL, NULL, NULL},
     {"rr_depth", V_INT, 0, 65536, NULL, NULL, NULL},
     {"light_samples", V_INT, 1, 1024, NULL, NULL, NULL},
     {"strategy", V_CHOICE, 0, 0, NULL, strategy_names, NULL},
+    {"light_select", V_CHOICE, 0, 0, NULL, mc_light_select_names, NULL},
     {"photons", V_INT, 1, 1 << 30, NULL, NULL, NULL},
     {"radius", V_REAL, 0, INFINITY, "must be positive", NULL, NULL},
     {"alpha", V_REAL, 0, 1, "must be between 0 and 1, both excluded", NULL, NULL},
@@ -692,6 +693,8 @@ static void finish_integrator(struct parser *p, struct block *b)
         it->light_samples = (int)b->v[INT_LIGHT_SAMPLES].at[0].num;
     if (b->v[INT_STRATEGY].set)
         it->strategy = (enum strategy)b->v[INT_STRATEGY].choice;
+    if (b->v[INT_LIGHT_SELECT].set)
+        it->light_select = (enum light_select_kind)b->v[INT_LIGHT_SELECT].choice;
     if (b->v[INT_PHOTONS].set)
         it->photons = (long)b->v[INT_PHOTONS].at[0].num;
     if (b->v[INT_RADIUS].set)

@@ -1,7 +1,7 @@
 /* prepare.c: turns a parsed scene into a renderable one: static primitives first with their BVH,
  * then the moving ones with a second BVH bounded over the shutter, one area light per emitting
- * primitive, the environment (the default white sky when nothing emits), and the alias table that
- * picks lights in proportion to power; and each material's precomputed BSDF tables. */
+ * primitive, the environment (the default white sky when nothing emits), and the light selection
+ * (light/select.h); and each material's precomputed BSDF tables. */
 #include "scene/scene.h"
 
 #include <stdlib.h>
@@ -126,7 +126,6 @@ mcrt_status mc_scene_prepare(struct scene *s, mc_diag *d)
     struct light l, env;
     mcrt_status st;
     int has_light, has_env = 0;
-    double *power;
     if (s->prepared)
         return MCRT_OK;
     if (s->material_count == 0)
@@ -176,16 +175,15 @@ mcrt_status mc_scene_prepare(struct scene *s, mc_diag *d)
         if (s->env_light < 0)
             return mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
     }
-    power = mc_malloc((s->light_count ? s->light_count : 1) * sizeof *power);
-    if (!power)
-        return mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
     s->light_scene.prims = s->prims;
     s->light_scene.motions = s->motions;
     s->light_scene.radius = scene_radius(s, &s->light_scene.center);
+    s->light_scene.shutter[0] = s->camera.shutter[0];
+    s->light_scene.shutter[1] = s->camera.shutter[1];
     for (i = 0; i < s->light_count; i++)
-        power[i] = s->lights[i].power = mc_light_power(&s->light_scene, &s->lights[i]);
-    st = mc_alias_build(&s->light_select, power, s->light_count, d);
-    free(power);
+        s->lights[i].power = mc_light_power(&s->light_scene, &s->lights[i]);
+    st = mc_light_select_build(&s->light_select, s->integrator.light_select, &s->light_scene,
+                               s->lights, s->light_count, s->env_light, d);
     if (st != MCRT_OK)
         return st;
     s->prepared = 1;

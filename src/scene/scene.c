@@ -32,6 +32,7 @@ int mc_scene_init(struct scene *s)
     s->integrator.max_depth = -1;
     s->integrator.rr_depth = 5;
     s->integrator.light_samples = 1;
+    s->integrator.light_select = LIGHT_SELECT_POWER;
     s->integrator.photons = 0;
     s->integrator.radius = 0.0f;
     s->integrator.alpha = 2.0f / 3.0f;
@@ -49,7 +50,7 @@ void mc_scene_free(struct scene *s)
     free(s->name);
     mc_bvh_free(&s->bvh);
     mc_bvh_free(&s->motion_bvh);
-    mc_alias_free(&s->light_select);
+    mc_light_select_free(&s->light_select);
     free(s->materials);
     free(s->prims);
     free(s->normals);

@@ -13,7 +13,7 @@
 #include "geom/motion.h"
 #include "light/envmap.h"
 #include "light/light.h"
-#include "sample/alias.h"
+#include "light/select.h"
 #include "sample/filter.h"   /* enum filter_kind */
 #include "sample/sampler.h"  /* enum sampler_kind */
 #include "scene/integrators.h"
@@ -40,6 +40,7 @@ struct integrator_desc {
     int rr_depth;                    /* Russian roulette starts after this many bounces: 5 */
     int light_samples;               /* shadow rays per non-delta hit: 1 */
     enum strategy strategy;          /* mis */
+    enum light_select_kind light_select; /* power */
     /* Stochastic progressive photon mapping (integrator/sppm.c): */
     long photons;                    /* photons per pass; 0 = the film's pixel count */
     float radius;                    /* initial gather radius; 0 = 5 × the scene's bounding radius
@@ -120,7 +121,7 @@ struct scene {
     struct bvh motion_bvh;
     size_t static_count;
     struct light_scene light_scene;  /* what the light functions read: prims, motions, radius */
-    struct mc_alias light_select;    /* chooses a light in proportion to its power */
+    struct light_select light_select;/* chooses the light of a light sample (light/select.h) */
     int env_light;                   /* index of the environment light or -1 */
     int prepared;
 };

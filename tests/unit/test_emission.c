@@ -15,7 +15,7 @@
 
 #include "chi2.h"
 #include "sample/warp.h"
-#include "scene/scene.h"
+#include "scene_util.h"
 #include "t.h"
 
 #define CHI2_TESTS 12
@@ -23,18 +23,7 @@
 
 static const double PI = 3.14159265358979323846;
 
-static int load(struct scene *s, const char *text)
-{
-    mc_diag d;
-    mc_scene_init(s);
-    if (mc_scene_parse(s, text, strlen(text), "test_emission", NULL, &d) != MCRT_OK
-        || mc_scene_prepare(s, &d) != MCRT_OK) {
-        T_CHECK(0, "scene does not load: %s", d.msg);
-        mc_scene_free(s);
-        return 0;
-    }
-    return 1;
-}
+static int load(struct scene *s, const char *text) { return t_load_scene(s, text, "test_emission", NULL); }
 
 /* What a chi-square test looks at: the light, the time, the frame that directions are measured
  * in, and which coordinate (direction, or point) is binned. */

@@ -19,7 +19,7 @@
 #include <unistd.h>
 
 #include "chi2.h"
-#include "scene/scene.h"
+#include "scene_util.h"
 #include "sample/warp.h"
 #include "t.h"
 
@@ -54,15 +54,7 @@ static const vec3 UP = {0.0f, 1.0f, 0.0f};
 /* Load scene text (OBJ paths relative to dir) and prepare it. */
 static int load(struct scene *s, const char *text, const char *dir)
 {
-    mc_diag d;
-    mc_scene_init(s);
-    if (mc_scene_parse(s, text, strlen(text), "test_light", dir, &d) != MCRT_OK
-        || mc_scene_prepare(s, &d) != MCRT_OK) {
-        T_CHECK(0, "scene does not load: %s", d.msg);
-        mc_scene_free(s);
-        return 0;
-    }
-    return 1;
+    return t_load_scene(s, text, "test_light", dir);
 }
 
 static struct ray make_ray(vec3 o, vec3 d, float tmax, float time)
@@ -116,7 +108,7 @@ static struct est irradiance_light(const struct scene *s, vec3 p, vec3 n, float 
         struct light_sample ls;
         float pmf, c;
         double e = 0.0;
-        int li = mc_alias_sample(&s->light_select, pcg32_double(&g), &pmf);
+        int li = mc_alias_sample(&s->light_select.power, pcg32_double(&g), &pmf);
         vec2 u;
         u.x = pcg32_float(&g);
         u.y = pcg32_float(&g);
@@ -618,7 +610,7 @@ static void mis_case(const char *what, const char *text, float time)
     for (i = 0; i < N; i++) {
         struct light_sample ls;
         float pmf;
-        int li = mc_alias_sample(&s.light_select, pcg32_double(&g), &pmf);
+        int li = mc_alias_sample(&s.light_select.power, pcg32_double(&g), &pmf);
         vec2 u;
         double q, rel;
         u.x = pcg32_float(&g);
@@ -712,13 +704,13 @@ static void test_selection(void)
         }
         T_NEAR(mc_light_power(&s.light_scene, l), phi[which], 1e-5 * phi[which],
                "power of light %d", which);
-        T_NEAR(mc_alias_pmf(&s.light_select, (size_t)k), phi[which] / total, 1e-6,
+        T_NEAR(mc_alias_pmf(&s.light_select.power, (size_t)k), phi[which] / total, 1e-6,
                "selection probability of light %d", which);
         count[k] = 0.0;
     }
     pcg32_seed(&g, 0x616c6961, 4);
     for (i = 0; i < N; i++) {
-        int li = mc_alias_sample(&s.light_select, pcg32_double(&g), NULL);
+        int li = mc_alias_sample(&s.light_select.power, pcg32_double(&g), NULL);
         if (li < 0 || li >= 6) {
             ok = 0;
             break;
@@ -727,7 +719,7 @@ static void test_selection(void)
     }
     T_CHECK(ok, "alias sample out of range");
     for (k = 0; k < 6; k++) {
-        double e = N * (double)mc_alias_pmf(&s.light_select, (size_t)k);
+        double e = N * (double)mc_alias_pmf(&s.light_select.power, (size_t)k);
         chi2 += (count[k] - e) * (count[k] - e) / e;
     }
     p = chi2_p_value(chi2, 5);

@@ -862,7 +862,7 @@ static void case_many_lights(void)
     for (i = 0; i < s.light_count; i++)
         total += s.lights[i].power;
     for (i = 0; i < s.light_count; i++) {
-        double rel = fabs(mc_alias_pmf(&s.light_select, i) - s.lights[i].power / total) / (s.lights[i].power / total);
+        double rel = fabs(mc_alias_pmf(&s.light_select.power, i) - s.lights[i].power / total) / (s.lights[i].power / total);
         worst = rel > worst ? rel : worst;
     }
     T_NOTE("many lights: worst relative error of a selection probability %.2g", worst);
@@ -870,7 +870,7 @@ static void case_many_lights(void)
     /* A: NA samples through the alias table. */
     for (i = 0; i < NA; i++) {
         float pmf;
-        int li = mc_alias_sample(&s.light_select, pcg32_double(&rng), &pmf);
+        int li = mc_alias_sample(&s.light_select.power, pcg32_double(&rng), &pmf);
         struct light_sample ls;
         double y = 0.0;
         vec2 u = v2(pcg32_float(&rng), pcg32_float(&rng));

@@ -1,0 +1,69 @@
+/* select.h: choosing the light of one light sample at a shading point, by one of the strategies
+ * of MC_LIGHT_SELECTS, and the probability of that choice for multiple importance sampling (a
+ * BSDF sample that hits a light weighs it against the light samples that could have chosen it,
+ * at the same point with the same normal: the pmf must be the one the choice used, or the MIS
+ * weights no longer sum to one and the estimate is biased).
+ *
+ * tree: the bounded lights (area and point lights) in a binary tree of light bounds
+ * (light/light.h struct light_bounds), descended from the root by each child's importance to the
+ * point: Conty Estevez and Kulla 2018, "Importance Sampling of Many Lights with Adaptive Tree
+ * Splitting", §4 (without the splitting), as pbrt-v4's BVHLightSampler builds and reads it. The
+ * environment, which has no bounds, is chosen first with probability I_env / (I_env + I_tree),
+ * both estimates of π × the irradiance at the point: I_tree the importance of the root's two
+ * children, I_env = π²·L̄ for an environment of mean radiance L̄ (that of a uniform sky on an
+ * unoccluded surface), which is its power / R² (light/environment.c).
+ * power: every light in proportion to its power, wherever the point (an alias table). */
+#ifndef MCRT_LIGHT_SELECT_H
+#define MCRT_LIGHT_SELECT_H
+
+#include "light/light.h"
+#include "sample/alias.h"
+
+#define MC_LIGHT_SELECTS(X) X(LIGHT_SELECT_POWER, power) X(LIGHT_SELECT_TREE, tree)
+enum light_select_kind { MC_LIGHT_SELECTS(MC_NAMES_ENUM) };
+#define LIGHT_SELECT_COUNT (0 MC_LIGHT_SELECTS(MC_NAMES_COUNT))
+/* The names, indexed by enum light_select_kind, ending in NULL (core/names.h). */
+extern const char *const mc_light_select_names[LIGHT_SELECT_COUNT + 1];
+
+/* A node of the tree: a leaf holds one light; an interior node's first child follows it, and
+ * `index` is its second. */
+struct light_node {
+    struct light_bounds b;
+    uint32_t index;      /* leaf: the light; interior: the second child */
+    uint32_t leaf;
+};
+
+struct light_select {
+    enum light_select_kind kind;
+    struct mc_alias power;     /* every light by power: the power strategy, and photons */
+    struct light_node *nodes;  /* the tree of the bounded lights; NULL when there are none */
+    size_t node_count;
+    uint64_t *trail;           /* per light: bit k set when the path from the root takes the
+                                * second child at depth k; all ones for a light not in the tree */
+    size_t light_count;
+    int env;                   /* the environment light or -1 */
+    double env_importance;     /* I_env */
+};
+
+/* Build both the tree and the power table over lights[0, n) (env: the environment's index or
+ * -1), for the strategy `kind`. MCRT_ERR_NOMEM when out of memory (ls is then empty). */
+mcrt_status mc_light_select_build(struct light_select *ls, enum light_select_kind kind,
+                                  const struct light_scene *s, const struct light *lights,
+                                  size_t n, int env, mc_diag *d);
+void mc_light_select_free(struct light_select *ls);
+
+/* Choose a light for the point p with unit normal n (zero: none, as in a medium) with one
+ * uniform u in [0, 1) (53 bits: pcg32_double, mc_sampler_1d_double). Returns it and its
+ * probability in *pmf, or -1 (pmf 0) when no light can reach p. */
+int mc_light_select_sample(const struct light_select *ls, vec3 p, vec3 n, double u, double *pmf);
+/* The probability that mc_light_select_sample chooses `light` at p, n: computed by the same
+ * descent, so equal to the *pmf it returns bit for bit. */
+double mc_light_select_pmf(const struct light_select *ls, vec3 p, vec3 n, int light);
+
+/* The importance of bounds b to the point p with unit normal n (zero: none): phi · cos θ' ·
+ * cos θi' / d², with θ' and θi' the smallest angles, over the directions between p and the box,
+ * to the emitters' normals (none beyond θe) and to n (Conty Estevez and Kulla 2018, eq. 3); d the
+ * distance to the box's centre, no less than half its diagonal. Exposed for the tests. */
+double mc_light_importance(const struct light_bounds *b, vec3 p, vec3 n);
+
+#endif
