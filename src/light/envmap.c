@@ -47,7 +47,9 @@ mcrt_status mc_envmap_build(struct envmap *m, const float *rgb, int w, int h, co
         for (x = 0; x < w; x++) {
             const float *c = &m->rgb[3 * ((size_t)y * (size_t)w + (size_t)x)];
             f[(size_t)y * (size_t)w + (size_t)x] = luminance(c) * (float)s;
-            m->power_integral += dw * (c[0] + c[1] + c[2]) / 3.0;
+            double mean = (c[0] + c[1] + c[2]) / 3.0;
+            m->power_integral += dw * mean;
+            m->square_integral += dw * mean * mean;
         }
     }
     st = mc_distrib2d_build(&m->dist, f, (size_t)w, (size_t)h, d);

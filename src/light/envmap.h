@@ -25,6 +25,8 @@ struct envmap {
     int w, h;
     struct mc_distrib2d dist;  /* over (u, v) of luminance × sin θ of the row's centre */
     double power_integral;     /* ∫ mean(RGB) dω over the sphere (sr·radiance) */
+    double square_integral;    /* ∫ mean(RGB)² dω: with power_integral, how far from uniform the
+                                * map is (light/select.h) */
 };
 
 /* Build from rgb[0..w·h·3) (copied). A NaN, infinite or negative value is an error "NAME: pixel
