@@ -253,8 +253,9 @@ ifneq ($(wildcard /usr/include/embree3/rtcore.h),)
 $(O)/tests/bench: CFLAGS += -DMCRT_HAVE_EMBREE
 $(O)/tests/bench: LDLIBS += -lembree3
 endif
-bench: all $(O)/tests/bench $(O)/tests/bench_render $(O)/tests/bench_sppm
+bench: all $(O)/tests/bench $(O)/tests/bench_render $(O)/tests/bench_sppm $(O)/tests/bench_obj
 	$(O)/tests/bench
+	$(O)/tests/bench_obj
 	$(O)/tests/bench_render
 	$(O)/tests/bench_sppm
 	MCRT=$(O)/mcrt sh tests/tools/mpi_bench.sh

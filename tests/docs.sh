@@ -5,7 +5,8 @@
 # option --help shows); every integrator of the library's table is named by mcrt.1, mcrt.5,
 # libmcrt.3 and mcrt.h; libmcrt.3 gives every function of src/mcrt.h with the header's exact
 # prototype, every status code and struct field, and an example that compiles; versions agree;
-# the README lists the set-up's Debian packages; every scene renders and the README lists it; the
+# the README lists the set-up's Debian packages; every scene renders and the README lists it, and
+# the generated model of scenes/vase.mcrt is what its generator makes; the
 # Cornell box shows its red wall on the left.
 # Run from the repository root after the build; $O is the build folder. Prints "ok ...", "FAIL ..."
 # or "skip ..." per check, then "N passed, N failed" (", N skipped" when some were).
@@ -227,6 +228,17 @@ for scene in scenes/*.mcrt; do
         sed 's/^/    /' "$tmp/run"
     fi
 done
+
+# The files of scenes/vase.mcrt are what tests/tools/model_gen.c makes: the OBJ and MTL files
+# byte for byte, the texture pixel for pixel (a PNG's bytes depend on the zlib that wrote it).
+gen=$O/tests/model_gen
+if [ -x "$gen" ] && mkdir "$tmp/model" && "$gen" "$tmp/model" && cmp -s "$tmp/model/vase.obj" scenes/vase.obj &&
+    cmp -s "$tmp/model/vase.mtl" scenes/vase.mtl &&
+    "$MCRT" diff --quiet --max-relmse 0 "$tmp/model/vase-glaze.png" scenes/vase-glaze.png; then
+    ok "scenes/vase.obj, vase.mtl and vase-glaze.png are what model_gen makes"
+else
+    fail "scenes/vase.obj, vase.mtl and vase-glaze.png differ from what $gen makes"
+fi
 
 # The Cornell box's orientation: from the camera the red wall is on the left and the green one on
 # the right, and they are lit (a light facing up would leave them black). Mean RGB of 5x5 pixels

@@ -44,7 +44,7 @@ struct pending {
     int open;                  /* a newmtl has been read */
     unsigned given;            /* bits 1 << enum mtl_statement */
     vec3 kd, ks, ke, tf;
-    double ns, ni, d, tr;
+    double ns, ni, d, tr, pr, pm;
     int illum;
     struct mtl_entry entry;
 };
@@ -96,10 +96,15 @@ static mcrt_status finish_material(struct mtl_reader *m)
     const char *base = strrchr(m->r.path, '/');
     int glass = c->illum == 4 || c->illum == 6 || c->illum == 7 || c->illum == 9 ||
                 (given(c, MTL_d) && c->d < 1.0) || (given(c, MTL_Tr) && c->tr > 0.0);
-    int specular = v3_max_comp(c->ks) > 0.0f && !(given(c, MTL_illum) && c->illum < 2);
+    int metallic = given(c, MTL_Pm) && c->pm > 0.5;
+    int specular = (v3_max_comp(c->ks) > 0.0f && !(given(c, MTL_illum) && c->illum < 2)) ||
+                   given(c, MTL_Pr);
+    static const unsigned map_key[2] = {MC_KEY_BIT(MC_KEY_TEXTURE), MC_KEY_BIT(MC_KEY_ROUGHNESS_TEXTURE)};
+    static const char *const map_what[2] = {"colour", "roughness"};
+    int i;
     if (!c->open)
         return MCRT_OK;
-    if (e->map_kd && !given(c, MTL_Kd))
+    if (e->maps[MTL_MAP_KD].path && !given(c, MTL_Kd))
         c->kd = v3s(1.0f); /* the image alone is the colour */
     set_name(mt->name, sizeof mt->name, base ? base + 1 : m->r.path, e->name);
     mt->ior = 1.5f;
@@ -110,10 +115,18 @@ static mcrt_status finish_material(struct mtl_reader *m)
         keys = MC_KEY_BIT(MC_KEY_TINT) | MC_KEY_BIT(MC_KEY_IOR);
         if (given(c, MTL_Ni))
             mt->ior = (float)c->ni;
-    } else if (specular) {
-        if (given(c, MTL_Ns))
+    } else if (metallic || specular) {
+        /* Pr is perceptual roughness: α = Pr² as for a scene's 'roughness'; map_Pr scales it. */
+        if (given(c, MTL_Pr))
+            mt->alpha = (float)(c->pr * c->pr);
+        else if (given(c, MTL_Ns))
             mt->alpha = alpha_from_ns(c->ns);
-        if (v3_max_comp(c->kd) > 0.0f) {
+        else if (e->maps[MTL_MAP_PR].path)
+            mt->alpha = 1.0f;
+        if (metallic) {
+            mt->kind = MC_MATERIAL_KIND(metal);
+            mt->color = c->kd;
+        } else if (v3_max_comp(c->kd) > 0.0f) {
             mt->kind = MC_MATERIAL_KIND(plastic);
             mt->color = c->kd;
             if (given(c, MTL_Ni) && c->ni > 1.0) /* many exporters write Ni 1 for opaque ones */
@@ -131,14 +144,17 @@ static mcrt_status finish_material(struct mtl_reader *m)
     if (mt->kind->ops->complete && !mt->kind->ops->complete(mt, keys, &problem))
         return mc_fail(m->r.d, MCRT_ERR_PARSE, "%s:%d:%d: material '%s': %s", m->r.path, e->line,
                        e->col, e->name, problem.what);
-    if (e->map_kd && !(mt->kind->keys & MC_KEY_BIT(MC_KEY_TEXTURE)) &&
-        mc_scene_warn(m->warn, "%s: warning: material '%s' is %s, which takes no colour texture: "
-                      "its map_Kd is ignored", e->map_origin, e->name, mt->kind->name) < 0)
-        return nomem(m);
-    if (!(mt->kind->keys & MC_KEY_BIT(MC_KEY_TEXTURE))) {
-        free(e->map_kd);
-        free(e->map_origin);
-        e->map_kd = e->map_origin = NULL;
+    for (i = 0; i < 2; i++) {
+        struct mtl_map *mp = &e->maps[i];
+        if (!mp->path || (mt->kind->keys & map_key[i]))
+            continue;
+        if (mc_scene_warn(m->warn, "%s: warning: material '%s' is %s, which takes no %s texture: "
+                          "its map_%s is ignored", mp->origin, e->name, mt->kind->name, map_what[i],
+                          i == MTL_MAP_KD ? "Kd" : "Pr") < 0)
+            return nomem(m);
+        free(mp->path);
+        free(mp->origin);
+        mp->path = mp->origin = NULL;
     }
     e->emit = c->ke;
     e->scene_index = -1;
@@ -270,11 +286,12 @@ static const struct {
                    {"-clamp", 1}, {"-imfchan", 1}, {"-mm", 2}, {"-o", 3}, {"-s", 3}, {"-t", 3},
                    {"-texres", 1}, {"-type", 1}};
 
-/* map_Kd [-option args...] FILE: the file (the rest of the line, read as a name: mc_wf_name_end),
- * relative to the MTL file's folder. */
-static mcrt_status read_map(struct mtl_reader *m, const char *kw, const char *p, const char *le)
+/* map_Kd or map_Pr [-option args...] FILE (into maps[which]): the file (the rest of the line, read
+ * as a name: mc_wf_name_end), relative to the MTL file's folder. */
+static mcrt_status read_map(struct mtl_reader *m, int which, const char *kw, const char *p,
+                            const char *le)
 {
-    struct mtl_entry *e = &m->cur.entry;
+    struct mtl_map *mp = &m->cur.entry.maps[which];
     const char *q, *slash = strrchr(m->r.path, '/');
     size_t nd = slash ? (size_t)(slash + 1 - m->r.path) : 0, i, n;
     char buf[48], origin[600];
@@ -310,19 +327,19 @@ static mcrt_status read_map(struct mtl_reader *m, const char *kw, const char *p,
     }
     q = mc_wf_name_end(p, le);
     if (p == q)
-        return mc_wf_fail(&m->r, kw, "'map_Kd' needs an image file name");
-    free(e->map_kd); /* a second map_Kd in one material replaces the first */
-    free(e->map_origin);
+        return mc_wf_fail(&m->r, kw, "'%.6s' needs an image file name", kw);
+    free(mp->path); /* a second map of one kind in one material replaces the first */
+    free(mp->origin);
     n = (size_t)(q - p);
     snprintf(origin, sizeof origin, "%s:%d:%d", m->r.path, m->r.line, (int)(p - m->r.line_start) + 1);
-    e->map_kd = mc_malloc(nd + n + 1);
-    e->map_origin = mc_malloc(strlen(origin) + 1);
-    if (!e->map_kd || !e->map_origin)
+    mp->path = mc_malloc(nd + n + 1);
+    mp->origin = mc_malloc(strlen(origin) + 1);
+    if (!mp->path || !mp->origin)
         return nomem(m);
-    memcpy(e->map_kd, m->r.path, nd);
-    memcpy(e->map_kd + nd, p, n);
-    e->map_kd[nd + n] = '\0';
-    strcpy(e->map_origin, origin);
+    memcpy(mp->path, m->r.path, nd);
+    memcpy(mp->path + nd, p, n);
+    mp->path[nd + n] = '\0';
+    strcpy(mp->origin, origin);
     return MCRT_OK;
 }
 
@@ -338,7 +355,10 @@ static mcrt_status read_statement(struct mtl_reader *m, enum mtl_statement s, co
     case MTL_Ks: return read_colour(m, kw, p, le, 1, &c->ks);
     case MTL_Tf: return read_colour(m, kw, p, le, 1, &c->tf);
     case MTL_Ke: return read_colour(m, kw, p, le, 0, &c->ke);
-    case MTL_map_Kd: return read_map(m, kw, p, le);
+    case MTL_map_Kd: return read_map(m, MTL_MAP_KD, kw, p, le);
+    case MTL_map_Pr: return read_map(m, MTL_MAP_PR, kw, p, le);
+    case MTL_Pr: return read_real(m, kw, p, le, 0.0, 0, 1.0, "must be from 0 to 1", &c->pr);
+    case MTL_Pm: return read_real(m, kw, p, le, 0.0, 0, 1.0, "must be from 0 to 1", &c->pm);
     case MTL_Ns: return read_real(m, kw, p, le, 0.0, 0, INFINITY, "must not be negative", &c->ns);
     case MTL_Ni: return read_real(m, kw, p, le, 0.0, 1, INFINITY, "must be positive", &c->ni);
     case MTL_d: return read_real(m, kw, p, le, 0.0, 0, 1.0, "must be from 0 to 1", &c->d);
@@ -387,6 +407,15 @@ static mcrt_status read_line(void *user, const char *p, const char *le)
     return MCRT_OK;
 }
 
+static void free_maps(struct mtl_entry *e)
+{
+    int k;
+    for (k = 0; k < 2; k++) {
+        free(e->maps[k].path);
+        free(e->maps[k].origin);
+    }
+}
+
 mcrt_status mc_mtl_load(struct mtl_library *lib, const char *path, const char *origin,
                         struct scene *warn, mc_diag *d)
 {
@@ -414,10 +443,8 @@ mcrt_status mc_mtl_load(struct mtl_library *lib, const char *path, const char *o
     st = mc_wf_lines(&m.r, buf, len, read_line, &m);
     if (!st)
         st = finish_material(&m);
-    if (m.cur.open) { /* a material not finished owns its strings still */
-        free(m.cur.entry.map_kd);
-        free(m.cur.entry.map_origin);
-    }
+    if (m.cur.open) /* a material not finished owns its strings still */
+        free_maps(&m.cur.entry);
     free(buf);
     return st;
 }
@@ -434,15 +461,18 @@ int mc_mtl_find(const struct mtl_library *lib, const char *name, size_t len)
 int mc_mtl_use(struct mtl_library *lib, size_t i, struct scene *s)
 {
     struct mtl_entry *e = &lib->e[i];
+    int k;
     if (e->scene_index >= 0)
         return e->scene_index;
-    if (e->map_kd) {
-        const char *base = strrchr(e->map_kd, '/');
-        int k = mc_scene_image_texture(s, base ? base + 1 : e->map_kd, e->map_kd, e->map_origin);
-        if (k < 0)
-            return -1;
-        e->m.texture = k + 1;
-    }
+    for (k = 0; k < 2; k++)
+        if (e->maps[k].path) {
+            const char *base = strrchr(e->maps[k].path, '/');
+            int t = mc_scene_image_texture(s, base ? base + 1 : e->maps[k].path, e->maps[k].path,
+                                           e->maps[k].origin);
+            if (t < 0)
+                return -1;
+            *(k == MTL_MAP_KD ? &e->m.texture : &e->m.roughness_texture) = t + 1;
+        }
     return e->scene_index = mc_scene_add_material(s, &e->m);
 }
 
@@ -451,11 +481,8 @@ void mc_mtl_free(struct mtl_library *lib)
     while (lib->npaths > 0)
         free(lib->paths[--lib->npaths]);
     free(lib->paths);
-    while (lib->n > 0) {
-        lib->n--;
-        free(lib->e[lib->n].map_kd);
-        free(lib->e[lib->n].map_origin);
-    }
+    while (lib->n > 0)
+        free_maps(&lib->e[--lib->n]);
     free(lib->e);
     memset(lib, 0, sizeof *lib);
 }

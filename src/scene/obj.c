@@ -53,6 +53,8 @@ struct reader {
     struct vec3_array v, vn, vt; /* vt: (u, v, 0) */
     struct mtl_library lib; /* the materials of the mtllib files read so far */
     struct prim proto;      /* what the faces copy: the mesh's, with usemtl's material and Ke */
+    struct corner *corners; /* the face being read */
+    size_t corner_cap;
     struct obj_stats stats;
 };
 
@@ -249,38 +251,38 @@ static mcrt_status add_triangle(struct reader *r, struct corner a, struct corner
     return MCRT_OK;
 }
 
-/* A face: validated whole first (so that a bad corner adds nothing, and so that smooth shading
- * is known to hold for every corner), then added as the fan (0, k, k+1). */
+/* A face: its corners read once into r->corners and validated whole (so that a bad corner adds
+ * nothing, and so that smooth shading is known to hold for every corner), then added as the fan
+ * (0, k, k+1). */
 static mcrt_status read_face(struct reader *r, const char *kw, const char *le)
 {
-    struct corner first = {0, -1, -1}, prev = {0, -1, -1}, c;
     const char *p, *q;
-    int n = 0, smooth = 1, textured = 1, pass;
+    size_t n = 0, k;
+    int smooth = 1, textured = 1;
     mcrt_status st;
-    for (pass = 0; pass < 2; pass++) {
-        /* A '#' ends the corners: some exporters put comments after them. */
-        for (p = mc_wf_skip_blank(kw + 1, le); p < le && *p != '#'; p = mc_wf_skip_blank(q, le)) {
-            q = mc_wf_token_end(p, le);
-            st = read_corner(r, p, q, &c);
-            if (st)
-                return st;
-            if (pass == 0) {
-                n++;
-                smooth = smooth && c.normal >= 0 && !v3_is_zero(r->vn.v[c.normal]);
-                textured = textured && c.uv >= 0;
-                continue;
-            }
-            if (n == 0)
-                first = c;
-            else if (n >= 2 && (st = add_triangle(r, first, prev, c, smooth, textured)))
-                return st;
-            prev = c;
-            n++;
+    /* A '#' ends the corners: some exporters put comments after them. */
+    for (p = mc_wf_skip_blank(kw + 1, le); p < le && *p != '#'; p = mc_wf_skip_blank(q, le)) {
+        struct corner *c;
+        q = mc_wf_token_end(p, le);
+        if (n == r->corner_cap) {
+            size_t ncap = r->corner_cap ? 2 * r->corner_cap : 16;
+            struct corner *nc = mc_realloc(r->corners, ncap * sizeof *nc);
+            if (!nc)
+                return nomem(r);
+            r->corners = nc;
+            r->corner_cap = ncap;
         }
-        if (pass == 0 && n < 3)
-            return mc_wf_fail(&r->r, kw, "a face needs at least 3 vertices, found %d", n);
-        n = 0;
+        c = &r->corners[n++];
+        if ((st = read_corner(r, p, q, c)))
+            return st;
+        smooth = smooth && c->normal >= 0 && !v3_is_zero(r->vn.v[c->normal]);
+        textured = textured && c->uv >= 0;
     }
+    if (n < 3)
+        return mc_wf_fail(&r->r, kw, "a face needs at least 3 vertices, found %d", (int)n);
+    for (k = 2; k < n; k++)
+        if ((st = add_triangle(r, r->corners[0], r->corners[k - 1], r->corners[k], smooth, textured)))
+            return st;
     return MCRT_OK;
 }
 
@@ -432,6 +434,7 @@ mcrt_status mc_obj_load(struct scene *s, const struct obj_mesh *m, struct obj_st
     free(r.v.v);
     free(r.vn.v);
     free(r.vt.v);
+    free(r.corners);
     if (stats)
         *stats = r.stats;
     if (st)

@@ -28,6 +28,7 @@
 #include "geom/bvh.h"
 #include "geom/bvh_node.h"
 #include "median.h"
+#include "rss.h"
 
 #ifdef MCRT_HAVE_EMBREE
 #include <embree3/rtcore.h>
@@ -508,64 +509,6 @@ static void measure(struct job *j, int ntracers, int threads, int reps, double m
         out[k].ns_per_ray = median(cpu[k], reps);
         out[k].wall_mrays = median(wall_rate[k], reps);
     }
-}
-
-/* ---- Memory ---- */
-
-/* A field of /proc/self/status ("VmRSS", "VmHWM") in bytes, or -1 where there is none. */
-static long long status_bytes(const char *field)
-{
-    FILE *f = fopen("/proc/self/status", "r");
-    char line[256];
-    long long kb = -1;
-    size_t n = strlen(field);
-    if (!f)
-        return -1;
-    while (fgets(line, sizeof line, f))
-        if (strncmp(line, field, n) == 0 && line[n] == ':') {
-            kb = atoll(line + n + 1);
-            break;
-        }
-    fclose(f);
-    return kb < 0 ? -1 : kb * 1024;
-}
-
-/* Peak resident memory of a build: mark_rss() gives freed heap back to the system and resets the
- * process's high-water mark (Linux: writing 5 to /proc/self/clear_refs), and returns the resident
- * bytes then; after the build, VmHWM minus that is the most the build added at any moment, and
- * VmRSS minus it what stays (the BVH). -1 where Linux's counters are not there. */
-static long long mark_rss(void)
-{
-    FILE *f;
-#ifdef __GLIBC__
-    malloc_trim(0);
-#endif
-    f = fopen("/proc/self/clear_refs", "w");
-    if (!f)
-        return -1;
-    fputs("5", f);
-    fclose(f);
-    return status_bytes("VmRSS");
-}
-
-struct rss {
-    double peak, kept; /* bytes per triangle; negative: unknown */
-};
-
-static struct rss rss_since(long long mark, size_t triangles)
-{
-    struct rss r = {-1, -1};
-    long long hwm = status_bytes("VmHWM"), now;
-    /* Kept is what the build still holds: heap it freed is given back first, as for the mark. */
-#ifdef __GLIBC__
-    malloc_trim(0);
-#endif
-    now = status_bytes("VmRSS");
-    if (mark >= 0 && hwm >= 0 && now >= 0) {
-        r.peak = (double)(hwm - mark) / (double)triangles;
-        r.kept = (double)(now - mark) / (double)triangles;
-    }
-    return r;
 }
 
 /* ---- Statistics ---- */

@@ -20,7 +20,7 @@ SPPS=${SPPS:-16 64 256}
 SAMPLERS=${SAMPLERS:-random stratified sobol}
 tmp=$(mktemp -d) || exit 2
 trap 'rm -rf "$tmp"' EXIT
-cp scenes/*.obj "$tmp"/ 2>/dev/null
+cp scenes/*.obj scenes/*.mtl scenes/*.exr scenes/*-glaze.png "$tmp"/ 2>/dev/null # what the scenes read
 . tests/outputs.sh.inc
 
 printf '%-16s %-10s %5s %11s %11s %6s%s\n' scene sampler spp est_relmse true_relmse ratio \

@@ -10,7 +10,7 @@ SHRINK=${SHRINK:-2}
 FIRST=${FIRST:-4}
 tmp=$(mktemp -d) || exit 2
 trap 'rm -rf "$tmp"' EXIT
-cp scenes/*.obj "$tmp"/ 2>/dev/null
+cp scenes/*.obj scenes/*.mtl scenes/*.exr scenes/*-glaze.png "$tmp"/ 2>/dev/null # what the scenes read
 . tests/outputs.sh.inc
 
 printf '%-14s %10s %8s %7s %10s %10s %10s %6s\n' scene est seconds slope target predicted \

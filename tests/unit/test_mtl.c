@@ -3,7 +3,8 @@
  * warnings (once each), and two renders with a closed form: a closed cube of black walls emitting
  * Ke, seen from inside, is Ke in every pixel exactly; walls of albedo rho emitting Ke give
  * Ke / (1 - rho) everywhere (the enclosure's radiance L = Ke + rho L), within the noise; a
- * map_Kd image multiplies Kd, exactly, on a face under the white sky. */
+ * map_Kd image multiplies Kd, exactly, on a face under the white sky; Pr, Pm and map_Pr. And the numbers OBJ and MTL
+ * files share (wavefront.c) are strtod's bit for bit, its fast path included. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -12,7 +13,9 @@
 #include "io/image.h"
 #include "render_util.h"
 #include "scene/mtl.h"
+#include "core/rng.h"
 #include "scene/scene.h"
+#include "scene/wavefront.h"
 #include "t.h"
 
 static char tmpdir[64];
@@ -59,14 +62,16 @@ static void test_mapping(void)
                  "newmtl water\nKd 0.5\nNi 1.33\nTf 0.9 1 1\nillum 7\n"
                  "newmtl veil\nd 0.5\n"
                  "newmtl lamp\nKe 2 3 4\n"
-                 "\tnewmtl two words \n Kd 1\n");
+                 "\tnewmtl two words \n Kd 1\n"
+                 "newmtl pbr\nKd 0.6 0.5 0.4\nPr 0.5\nPm 0\n"
+                 "newmtl pbrmetal\nKd 0.9 0.6 0.3\nPr 0.3\nPm 1\nmap_Pr rough.png\n");
     snprintf(path, sizeof path, "%s/kinds.mtl", tmpdir);
     memset(&lib, 0, sizeof lib);
     mc_scene_init(&s);
     T_CHECK(mc_mtl_load(&lib, path, "t.obj:1:8", &s, &d) == MCRT_OK, "%s", d.msg);
-    T_CHECK(lib.n == 8, "%zu materials", lib.n);
+    T_CHECK(lib.n == 10, "%zu materials", lib.n);
     T_CHECK(s.warnings == NULL, "Ka is ignored quietly: %s", s.warnings);
-    if (lib.n == 8) {
+    if (lib.n == 10) {
         e = entry(&lib, "matte");
         T_CHECK(e && e->m.kind == MC_MATERIAL_KIND(diffuse) && near3(e->m.color, 0.5f, 0.25f, 0.125f),
                 "illum 1 is diffuse Kd, whatever Ks");
@@ -95,6 +100,17 @@ static void test_mapping(void)
         T_CHECK(e && e->m.kind == MC_MATERIAL_KIND(diffuse) && near3(e->m.color, 0, 0, 0)
                     && near3(e->emit, 2, 3, 4),
                 "Ke alone: a black emitter");
+        e = entry(&lib, "pbr");
+        T_CHECK(e && e->m.kind == MC_MATERIAL_KIND(plastic) && e->m.alpha == 0.25f
+                    && near3(e->m.color, 0.6f, 0.5f, 0.4f) && !e->maps[MTL_MAP_PR].path,
+                "Pr without Ks: plastic of alpha Pr^2");
+        e = entry(&lib, "pbrmetal");
+        T_CHECK(e && e->m.kind == MC_MATERIAL_KIND(metal) && fabsf(e->m.alpha - 0.09f) < 1e-7f
+                    && near3(e->m.color, 0.9f, 0.6f, 0.3f) && e->maps[MTL_MAP_PR].path
+                    && strstr(e->maps[MTL_MAP_PR].path, "/rough.png")
+                    && strstr(e->maps[MTL_MAP_PR].origin, "kinds.mtl:40:8"),
+                "Pm 1: metal of reflectance Kd, alpha Pr^2, map_Pr beside the file (%s)",
+                e && e->maps[MTL_MAP_PR].origin ? e->maps[MTL_MAP_PR].origin : "none");
         e = entry(&lib, "two words");
         T_CHECK(e && near3(e->m.color, 1, 1, 1) && !strcmp(e->m.name, "kinds.mtl:two words"),
                 "a name with a blank; the scene's name '%s'", e ? e->m.name : "");
@@ -310,6 +326,52 @@ static void test_map_kd(void)
     remove(path);
 }
 
+/* Random decimal tokens of every shape the fast path takes or refuses (signs, leading zeros, 1 to
+ * 24 digits, a point anywhere, exponents to +-40, hex and words), each read by mc_wf_number and
+ * by strtod: the same double, bit for bit, wherever strtod reads the whole token as a number in
+ * a float's range (the others are errors, as before). */
+static void test_numbers(void)
+{
+    struct wf_reader r = {"t.obj", "an OBJ file", 1, NULL, NULL};
+    pcg32 g;
+    mc_diag d;
+    int i, differ = 0, errors = 0, checked = 0;
+    pcg32_seed(&g, 17, 0);
+    r.d = &d;
+    for (i = 0; i < 300000; i++) {
+        char tok[64];
+        int n = 0, k, digits = 1 + (int)(pcg32_next(&g) % 24), point = (int)(pcg32_next(&g) % 28);
+        unsigned form = pcg32_next(&g);
+        double want, got = 0.0;
+        char *end;
+        if (form % 5 == 0)
+            tok[n++] = form % 2 ? '-' : '+';
+        for (k = 0; k < digits; k++) {
+            if (k == point)
+                tok[n++] = '.';
+            tok[n++] = (char)('0' + (k < (int)(form >> 8) % 4 ? 0 : pcg32_next(&g) % 10));
+        }
+        if (form % 7 == 0)
+            n += sprintf(tok + n, "e%d", (int)(pcg32_next(&g) % 81) - 40);
+        if (form % 97 == 0)
+            n = sprintf(tok, "%s", form % 3 ? "0x1p3" : "inf");
+        tok[n] = '\0';
+        r.line_start = tok;
+        want = strtod(tok, &end);
+        if (end != tok + n || !isfinite(want) || fabs(want) > 3.4028234663852886e38) {
+            errors += mc_wf_number(&r, tok, tok + n, &got) != MCRT_OK;
+            continue;
+        }
+        checked++;
+        if (mc_wf_number(&r, tok, tok + n, &got) != MCRT_OK || memcmp(&got, &want, sizeof got)) {
+            if (differ++ < 5)
+                printf("  '%s': %.17g, strtod %.17g\n", tok, got, want);
+        }
+    }
+    T_CHECK(differ == 0, "%d of %d numbers differ from strtod's", differ, checked);
+    T_CHECK(checked > 250000 && errors > 1000, "%d numbers checked, %d refused", checked, errors);
+}
+
 int main(void)
 {
     snprintf(tmpdir, sizeof tmpdir, "/tmp/mcrt_mtl_XXXXXX");
@@ -317,6 +379,7 @@ int main(void)
         printf("FAIL mkdtemp\n");
         return 1;
     }
+    test_numbers();
     test_mapping();
     test_faces_and_overrides();
     test_emitting_box();

@@ -122,6 +122,16 @@ static mcrt_status load_file(char *msg, size_t size)
     return scene_left_empty(s, mcrt_scene_load_file(s, "scenes/mesh.mcrt"), msg, size);
 }
 
+/* A mesh taking its MTL materials (a map_Kd image texture among them), a checker, an
+ * environment map: the MTL reader's, the textures' and the warnings' allocations. */
+static mcrt_status load_vase(char *msg, size_t size)
+{
+    mcrt_scene *s = mcrt_scene_new();
+    if (!s)
+        return snprintf(msg, size, "mcrt_scene_new: NULL"), MCRT_ERR_NOMEM;
+    return scene_left_empty(s, mcrt_scene_load_file(s, "scenes/vase.mcrt"), msg, size);
+}
+
 static mcrt_status load_string(char *msg, size_t size)
 {
     mcrt_scene *s = mcrt_scene_new();
@@ -314,6 +324,10 @@ int main(void)
 
     sweep("mcrt_scene_load_file scenes/mesh.mcrt", load_file, 0);
     sweep("mcrt_scene_load_string of every kind", load_string, 0);
+    if (mcrt_format_supported("png") && exr)
+        sweep("mcrt_scene_load_file scenes/vase.mcrt", load_vase, 1);
+    else
+        T_SKIP("scenes/vase.mcrt reads a PNG and an EXR: this build lacks one");
 
     scene = mcrt_scene_new();
     T_CHECK(scene && mcrt_scene_load_string(scene, scene_text, strlen(scene_text), "nomem")
