@@ -302,21 +302,25 @@ static ALWAYS_INLINE void tri4_test(const struct tri4 *k, const struct tri_ray *
                            _mm_cmpgt_ps(e2, zero));
     __m128 undecided = _mm_or_ps(_mm_or_ps(_mm_cmpeq_ps(e0, zero), _mm_cmpeq_ps(e1, zero)),
                                  _mm_or_ps(_mm_cmpeq_ps(e2, zero), _mm_cmpunord_ps(det, det)));
-    /* Quad lanes (all ones where prim[lane] has MC_TRI4_QUAD) are rejected where e1 or e2 is of
-     * the other sign than det or larger than |det|: s or t outside [0, 1] (mc_watertight_intersect;
-     * the lanes decided here have no zero edge function). */
     const __m128 sign = _mm_set1_ps(-0.0f);
-    __m128 quad = _mm_castsi128_ps(_mm_srai_epi32(_mm_load_si128((const __m128i *)k->prim), 31));
-    __m128 adet = _mm_andnot_ps(sign, det);
-    __m128 outside = _mm_or_ps(_mm_or_ps(_mm_xor_ps(e1, det), _mm_xor_ps(e2, det)),
-                               _mm_or_ps(_mm_cmpgt_ps(_mm_andnot_ps(sign, e1), adet),
-                                         _mm_cmpgt_ps(_mm_andnot_ps(sign, e2), adet)));
-    /* Rejected: outside the triangle (edge functions of both signs) or the quad (only sign bits
-     * of outside are read, as of the rest); det = 0; ts = 0 or of the other sign than det (the
-     * sign bit of det ^ ts). */
-    __m128 shape = _mm_or_ps(_mm_and_ps(quad, outside), _mm_andnot_ps(quad, _mm_and_ps(neg, pos)));
-    __m128 reject = _mm_or_ps(_mm_or_ps(shape, _mm_xor_ps(det, ts)),
-                              _mm_or_ps(_mm_cmpeq_ps(det, zero), _mm_cmpeq_ps(ts, zero)));
+    const __m128i prim = _mm_load_si128((const __m128i *)k->prim);
+    __m128 shape = _mm_and_ps(neg, pos), reject;
+    /* Outside the triangle: edge functions of both signs. A block with quads (prim[lane] with
+     * MC_TRI4_QUAD; a triangle-only one skips this) rejects its quad lanes instead where e1 or e2
+     * is of the other sign than det or larger than |det|: s or t outside [0, 1]
+     * (mc_watertight_intersect; the lanes decided here have no zero edge function). Only sign
+     * bits of `outside` are read, as of the rest of `reject`. */
+    if ((unsigned)_mm_movemask_ps(_mm_castsi128_ps(prim)) & live) {
+        __m128 quad = _mm_castsi128_ps(_mm_srai_epi32(prim, 31)), adet = _mm_andnot_ps(sign, det);
+        __m128 outside = _mm_or_ps(_mm_or_ps(_mm_xor_ps(e1, det), _mm_xor_ps(e2, det)),
+                                   _mm_or_ps(_mm_cmpgt_ps(_mm_andnot_ps(sign, e1), adet),
+                                             _mm_cmpgt_ps(_mm_andnot_ps(sign, e2), adet)));
+        shape = _mm_or_ps(_mm_and_ps(quad, outside), _mm_andnot_ps(quad, shape));
+    }
+    /* Rejected: outside the shape; det = 0; ts = 0 or of the other sign than det (the sign bit
+     * of det ^ ts). */
+    reject = _mm_or_ps(_mm_or_ps(shape, _mm_xor_ps(det, ts)),
+                       _mm_or_ps(_mm_cmpeq_ps(det, zero), _mm_cmpeq_ps(ts, zero)));
     unsigned und = (unsigned)_mm_movemask_ps(undecided) & live;
     unsigned cand = live & ~und & ~(unsigned)_mm_movemask_ps(reject);
     out->undecided = und;
@@ -346,7 +350,7 @@ static ALWAYS_INLINE void tri4_test(const struct tri4 *k, const struct tri_ray *
                        _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_mul_ps(g3, me), mz),
                                              _mm_mul_ps(de, mz)),
                                   _mm_mul_ps(dz, me))),
-            adet);
+            _mm_andnot_ps(sign, det));
         cand &= (unsigned)_mm_movemask_ps(
             _mm_and_ps(_mm_cmpgt_ps(t, dt), _mm_cmplt_ps(t, _mm_set1_ps(tmax))));
         out->hit = cand;

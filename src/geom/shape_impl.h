@@ -54,7 +54,7 @@ static inline struct aabb mc_shape_widen(struct aabb b)
 
 static inline float mc_shape_max_abs(vec3 v)
 {
-    return fmaxf(fabsf(v.x), fmaxf(fabsf(v.y), fabsf(v.z)));
+    return f_max(fabsf(v.x), f_max(fabsf(v.y), fabsf(v.z)));
 }
 
 #endif
