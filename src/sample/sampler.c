@@ -118,12 +118,14 @@ static uint64_t next_key(struct sampler *s, uint32_t n)
     return key;
 }
 
-/* The stratum (of n, whose mc_permute mask is w) that this sample takes in the dimension keyed by key: Kensler's permutation
- * of the indices, rotated by an offset drawn from the key's other half. When n exceeds spp (a 2D
- * grid with spare cells) the samples leave some strata empty; the rotation makes each sample's
- * stratum uniform over all n (to within n·2^-32), which keeps the estimate unbiased whichever
- * strata are left out. */
-static uint32_t stratum(const struct sampler *s, uint32_t n, uint32_t w, uint64_t key)
+/* The stratum (of n, whose mc_permute mask is w) that this sample takes in the dimension keyed
+ * by key: Kensler's permutation of the indices, rotated by an offset drawn from the key's other
+ * half. When n exceeds spp (a 2D grid with spare cells) the samples leave some strata empty; the
+ * rotation makes each sample's stratum uniform over all n (to within n·2^-32), which keeps the
+ * estimate unbiased whichever strata are left out. Inline, as in_stratum: GCC -O2 otherwise keeps
+ * one out-of-line copy for the three kinds of draw, which costs a stratified draw 11% more
+ * instructions (192 against 171, in the order of a path's draws). */
+static inline uint32_t stratum(const struct sampler *s, uint32_t n, uint32_t w, uint64_t key)
 {
     uint32_t offset = (uint32_t)(((key >> 32) * n) >> 32);
     uint32_t k = permute(s->index, n, w, (uint32_t)key) + offset;
@@ -135,7 +137,7 @@ static uint32_t stratum(const struct sampler *s, uint32_t n, uint32_t w, uint64_
  * across an edge (the tests are exact integer products, below 2^56). So the value lands in its
  * stratum exactly and is below 1; the grid points of a stratum are equally likely to within
  * n·2^-24. */
-static float in_stratum(uint32_t k, uint32_t n, double scale, int shift, uint32_t m)
+static inline float in_stratum(uint32_t k, uint32_t n, double scale, int shift, uint32_t m)
 {
     uint64_t q;
     /* n = 2^shift: that grid point exactly, k·2^(24-shift) + ⌊m/2^shift⌋, inside the stratum. */
