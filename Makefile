@@ -114,8 +114,10 @@ $(O)/obj/src/io/%.o: CFLAGS += $(IO_CFLAGS)
 # The denoiser's loops run along rows of contiguous floats so that they vectorise; GCC's -O2
 # vectorises only loops whose trip count it knows to be a multiple of the vector's width (its
 # "very cheap" cost model), unless told to weigh each loop (compilers without the flag skip it).
+# -fno-trapping-math lets it compute both sides of a select (NL-means skips a weight of 0 even
+# for a value that is not finite): no result changes, as nothing reads the FP exception flags.
 DENOISE_CFLAGS := $(shell $(CC) -Werror -fvect-cost-model=dynamic -x c -c /dev/null -o /dev/null \
-                    2>/dev/null && echo -fvect-cost-model=dynamic)
+                    2>/dev/null && echo -fvect-cost-model=dynamic) -fno-trapping-math
 $(O)/obj/src/denoise/%.o: CFLAGS += $(DENOISE_CFLAGS)
 $(O)/obj/%.o: %.c $(CONFIG_MK)
 	@mkdir -p $(@D)

@@ -149,7 +149,7 @@ static ALWAYS_INLINE void patch_dist(const struct guide *g, int width, int x0, i
             col[j] *= norm;
         for (x = 0; x < tw && g->each; x++)
             for (c = 0; c < gc; c++)
-                wt[((size_t)y * tw + x) * gc + c] = col[x * gc + c] > 0.0f ? col[x * gc + c] : 0.0f;
+                wt[(size_t)c * tw * th + (size_t)y * tw + x] = col[x * gc + c] > 0.0f ? col[x * gc + c] : 0.0f;
         for (x = 0; x < tw && !g->each; x++) {
             float dmax = 0.0f;
             for (c = 0; c < gc; c++)
@@ -194,7 +194,7 @@ static mcrt_status run(struct pool *pl, mc_tile_fn fn, void *ctx, mc_diag *d)
 struct nlm_job {
     struct pool *pl;
     const struct guide *g;
-    const float *src;
+    const float *src; /* sc planes of width × height (nlm's copy of its interleaved src) */
     int sc, r;
     float *dst;
 };
@@ -204,10 +204,11 @@ static ALWAYS_INLINE void nlm_tile_body(void *ctx, struct tile_worker *w, int x0
 {
     struct nlm_job *j = ctx;
     int width = j->pl->width, height = j->pl->height, tw = x1 - x0, th = y1 - y0;
-    int sc = j->sc, wc = j->g->each ? sc : 1, na = sc + wc, dx, dy, x, y, c;
-    size_t np = (size_t)tw * th;
+    int sc = j->sc, wc = j->g->each ? sc : 1, dx, dy, x, y, c;
+    size_t np = (size_t)tw * th, n = (size_t)width * (size_t)height;
     float *wt = mc_malloc((np * (size_t)wc + scratch_floats(j->g)) * sizeof *wt);
-    double *acc = mc_calloc(np * (size_t)na, sizeof *acc);
+    /* Per channel a plane of sums of weighted values, then per weight channel one of weights. */
+    double *acc = mc_calloc(np * (size_t)(sc + wc), sizeof *acc), *wsum = acc + np * (size_t)sc;
     (void)w;
     if (!wt || !acc) {
         j->pl->status = MCRT_ERR_NOMEM;
@@ -217,33 +218,38 @@ static ALWAYS_INLINE void nlm_tile_body(void *ctx, struct tile_worker *w, int x0
     }
     for (dy = -j->r; dy <= j->r; dy++)
         for (dx = -j->r; dx <= j->r; dx++) {
+            /* The tile's pixels whose neighbour p + (dx, dy) is inside the image. */
+            int xa = x0 + dx < 0 ? -dx : x0, xb = x1 + dx > width ? width - dx : x1;
+            int ya = y0 + dy < 0 ? -dy : y0, yb = y1 + dy > height ? height - dy : y1;
             patch_dist(j->g, width, x0, y0, x1, y1, dx, dy, wt, wt + np * (size_t)wc);
             weights(wt, (int)np * wc, dx == 0 && dy == 0);
-            for (y = y0; y < y1; y++) {
-                if (y + dy < 0 || y + dy >= height)
-                    continue;
-                for (x = x0; x < x1; x++) {
-                    size_t l = (size_t)(y - y0) * tw + (size_t)(x - x0);
-                    const float *s = j->src + ((size_t)(y + dy) * width + (size_t)(x + dx)) * sc;
-                    const float *wl = wt + l * (size_t)wc;
-                    double *al = acc + l * (size_t)na;
-                    if (x + dx < 0 || x + dx >= width)
-                        continue;
-                    for (c = 0; c < sc; c++) {
-                        float wq = wl[wc > 1 ? c : 0];
-                        if (wq != 0.0f)
-                            al[c] += wq * s[c];
+            for (y = ya; y < yb; y++) {
+                size_t l = (size_t)(y - y0) * tw + (size_t)(xa - x0);
+                for (c = 0; c < sc; c++) {
+                    const float *s = j->src + (size_t)c * n + (size_t)(y + dy) * width
+                                     + (size_t)(xa + dx);
+                    const float *wl = wt + (size_t)(wc > 1 ? c : 0) * np + l;
+                    double *al = acc + (size_t)c * np + l;
+                    /* A weight of 0 adds nothing, even to a value that is not finite. */
+                    for (x = 0; x < xb - xa; x++) {
+                        double ws = (double)(wl[x] * s[x]);
+                        al[x] += wl[x] != 0.0f ? ws : 0.0;
                     }
-                    for (c = 0; c < wc; c++)
-                        al[sc + c] += wl[c];
+                }
+                for (c = 0; c < wc; c++) {
+                    const float *wl = wt + (size_t)c * np + l;
+                    double *al = wsum + (size_t)c * np + l;
+                    for (x = 0; x < xb - xa; x++)
+                        al[x] += wl[x];
                 }
             }
         }
     for (y = y0; y < y1; y++)
         for (x = x0; x < x1; x++) {
-            const double *al = acc + ((size_t)(y - y0) * tw + (size_t)(x - x0)) * (size_t)na;
+            size_t l = (size_t)(y - y0) * tw + (size_t)(x - x0);
             for (c = 0; c < sc; c++)
-                j->dst[((size_t)y * width + x) * sc + c] = (float)(al[c] / al[sc + (wc > 1 ? c : 0)]);
+                j->dst[((size_t)y * width + x) * sc + c]
+                    = (float)(acc[(size_t)c * np + l] / wsum[(size_t)(wc > 1 ? c : 0) * np + l]);
         }
     free(wt);
     free(acc);
@@ -261,21 +267,34 @@ static AVX2_TARGET void nlm_tile_avx2(void *ctx, struct tile_worker *w, int x0, 
 }
 #endif
 
+/* src: sc interleaved channels, dst the same. */
 static mcrt_status nlm(struct pool *pl, const struct guide *g, const float *src, int sc, int r,
                        float *dst, mc_diag *d)
 {
+    size_t i, n = (size_t)pl->width * (size_t)pl->height;
+    float *planes = mc_malloc(n * (size_t)sc * sizeof *planes);
     struct nlm_job j;
+    mcrt_status st;
+    int c;
+    if (!planes)
+        return mc_fail(d, MCRT_ERR_NOMEM, "out of memory for the denoiser");
+    for (i = 0; i < n; i++)
+        for (c = 0; c < sc; c++)
+            planes[(size_t)c * n + i] = src[i * (size_t)sc + (size_t)c];
     j.pl = pl;
     j.g = g;
-    j.src = src;
+    j.src = planes;
     j.sc = sc;
     j.r = r;
     j.dst = dst;
 #ifdef NFOR_AVX_DISPATCH
     if (__builtin_cpu_supports("avx2"))
-        return run(pl, nlm_tile_avx2, &j, d);
+        st = run(pl, nlm_tile_avx2, &j, d);
+    else
 #endif
-    return run(pl, nlm_tile, &j, d);
+        st = run(pl, nlm_tile, &j, d);
+    free(planes);
+    return st;
 }
 
 /* ---- First-order regression (NFOR §5.2) ---- */
@@ -320,19 +339,36 @@ static void solve(double *M, int n, double *b)
  * a multiple of LANES. */
 enum { SIDE = 2 * REG_R + 1, NW = SIDE * SIDE, LANES = 8, NWP = (NW + LANES - 1) / LANES * LANES };
 
-/* Σ a[o]·b[o] over the padded window, in LANES partial sums added in double at the end: the
- * same operations in the same order whatever vector width the compiler picks. */
-static ALWAYS_INLINE double dot(const float *a, const float *b)
+/* Σ_o a_k[o]·col_b[o] for both bandwidths' a_0 and a_1 and DOT_BLOCK columns, into out[k][b],
+ * each in LANES partial sums added in double at the end: the same operations in the same order
+ * whatever vector width the compiler picks. The columns go together so that each a_k is loaded
+ * once for all of them and the 2·DOT_BLOCK sums stay in registers (all but 5 of AVX2's 16);
+ * each spelt out, as GCC keeps an array indexed by a loop in memory. */
+enum { DOT_BLOCK = 4 };
+static ALWAYS_INLINE void dots(const float *a0, const float *a1, const float *const *col,
+                               double out[2][DOT_BLOCK])
 {
-    float s[LANES] = {0.0f};
-    double t = 0.0;
-    int o, l;
+    const float *c0 = col[0], *c1 = col[1], *c2 = col[2], *c3 = col[3];
+    float s[2][DOT_BLOCK][LANES] = {{{0.0f}}};
+    int o, l, b, k;
     for (o = 0; o < NWP; o += LANES)
-        for (l = 0; l < LANES; l++)
-            s[l] += a[o + l] * b[o + l];
-    for (l = 0; l < LANES; l++)
-        t += s[l];
-    return t;
+        for (l = 0; l < LANES; l++) {
+            s[0][0][l] += a0[o + l] * c0[o + l];
+            s[0][1][l] += a0[o + l] * c1[o + l];
+            s[0][2][l] += a0[o + l] * c2[o + l];
+            s[0][3][l] += a0[o + l] * c3[o + l];
+            s[1][0][l] += a1[o + l] * c0[o + l];
+            s[1][1][l] += a1[o + l] * c1[o + l];
+            s[1][2][l] += a1[o + l] * c2[o + l];
+            s[1][3][l] += a1[o + l] * c3[o + l];
+        }
+    for (k = 0; k < 2; k++)
+        for (b = 0; b < DOT_BLOCK; b++) {
+            double t = 0.0;
+            for (l = 0; l < LANES; l++)
+                t += s[k][b][l];
+            out[k][b] = t;
+        }
 }
 
 struct reg_job {
@@ -341,48 +377,123 @@ struct reg_job {
     const float *img;          /* the colour regressed, padded (3 channels) */
     const float *const *feat;  /* nf planes, padded */
     int nf;
-    float **acc;               /* per tile: two (one a bandwidth) (T + 2R)² × 4 floats */
+    float **acc;               /* per tile: per bandwidth 4 planes (R, G, B, weight) of (T + 2R)² */
 };
 
 /* One pixel's window, column by column (the columns of the design matrix: 1, the offset, and each
  * feature's difference from the pixel's own, so that the fit is centred on it), the colours and,
- * per bandwidth, the weights and the weighted columns. */
+ * per bandwidth, the weights, the weighted columns and the fit. */
 struct window {
-    float x[MAX_DIM][NWP], y[3][NWP], w[2][NWP], wx[MAX_DIM][NWP];
+    float x[MAX_DIM][NWP], y[3][NWP], w[2][NWP], wx[2][MAX_DIM][NWP], fit[2][3][NWP];
 };
 
-/* Pixel (x, y)'s window (stride: a padded row), its distances dist (NWP of them, from
- * patch_dist with k = 1) turned into each bandwidth's weights, 0 outside the image. */
-static ALWAYS_INLINE void window_fill(const struct reg_job *j, int x, int y, const float *dist, struct window *v)
+/* The columns every window shares: 1 and the offset, and 0 in the padding. */
+static void window_init(struct window *v)
 {
-    const int R = REG_R, nd = 3 + j->nf, width = j->pl->width, height = j->pl->height;
+    int o;
+    memset(v, 0, sizeof *v);
+    for (o = 0; o < NW; o++) {
+        v->x[0][o] = 1.0f;
+        v->x[1][o] = (float)(o % SIDE - REG_R);
+        v->x[2][o] = (float)(o / SIDE - REG_R);
+    }
+}
+
+/* Pixel (x, y)'s window (stride: a padded row), its distances dist (NWP of them, from
+ * patch_dist with k = 1) turned into each bandwidth's weights, 0 outside the image: row by row
+ * of the window, each a run of contiguous floats of the padded planes. */
+static ALWAYS_INLINE void window_fill(const struct reg_job *j, int x, int y, const float *dist,
+                                      struct window *v)
+{
+    const int R = REG_R, width = j->pl->width, height = j->pl->height;
     size_t stride = (size_t)width + 2 * PAD, p = (size_t)(y + PAD) * stride + (size_t)(x + PAD);
-    int a, c, k, o, dx, dy;
-    for (o = 0, dy = -R; dy <= R; dy++)
-        for (dx = -R; dx <= R; dx++, o++) {
-            size_t q = p + (size_t)((ptrdiff_t)dy * (ptrdiff_t)stride + dx);
-            int inside = x + dx >= 0 && x + dx < width && y + dy >= 0 && y + dy < height;
-            v->x[0][o] = 1.0f;
-            v->x[1][o] = (float)dx;
-            v->x[2][o] = (float)dy;
-            for (a = 0; a < j->nf; a++)
-                v->x[3 + a][o] = j->feat[a][q] - j->feat[a][p];
-            for (c = 0; c < 3; c++)
-                v->y[c][o] = j->img[q * 3 + c];
-            for (k = 0; k < 2; k++)
-                v->w[k][o] = inside ? dist[o] / (reg_k[k] * reg_k[k]) : DIST_CLAMP;
+    int lo = clampi(R - x, 0, SIDE), hi = clampi(width - x + R, 0, SIDE); /* inside: [lo, hi) */
+    int a, c, k, o, i, dy;
+    for (o = 0, dy = -R; dy <= R; dy++, o += SIDE) {
+        size_t q = p + (size_t)((ptrdiff_t)dy * (ptrdiff_t)stride - R);
+        int row_in = y + dy >= 0 && y + dy < height;
+        for (a = 0; a < j->nf; a++) {
+            const float *fq = j->feat[a] + q;
+            float fp = j->feat[a][p], *xa = v->x[3 + a] + o;
+            for (i = 0; i < SIDE; i++)
+                xa[i] = fq[i] - fp;
         }
-    for (; o < NWP; o++) {
-        for (a = 0; a < nd; a++)
-            v->x[a][o] = 0.0f;
         for (c = 0; c < 3; c++)
-            v->y[c][o] = 0.0f;
-        v->w[0][o] = v->w[1][o] = DIST_CLAMP;
+            for (i = 0; i < SIDE; i++)
+                v->y[c][o + i] = j->img[(q + (size_t)i) * 3 + (size_t)c];
+        for (k = 0; k < 2; k++) {
+            float *wk = v->w[k] + o;
+            for (i = 0; i < SIDE; i++)
+                wk[i] = dist[o + i] / (reg_k[k] * reg_k[k]);
+            for (i = 0; i < SIDE; i++)
+                if (!row_in || i < lo || i >= hi)
+                    wk[i] = DIST_CLAMP;
+        }
     }
     for (k = 0; k < 2; k++) {
+        for (o = NW; o < NWP; o++)
+            v->w[k][o] = DIST_CLAMP;
         exp_neg(v->w[k], NWP);
         if (v->w[k][R * SIDE + R] < MIN_WEIGHT)
             v->w[k][R * SIDE + R] = MIN_WEIGHT;
+    }
+}
+
+/* The weighted least squares of the window v for both bandwidths: X^T W X into M[k] (nd × nd)
+ * and X^T W Y into B[k] (nd × 3), for solve. Row a of both at once: its weighted column against
+ * the columns a..nd-1 and the colours, DOT_BLOCK at a time. */
+static ALWAYS_INLINE void normal_equations(struct window *v, int nd, double M[2][MAX_DIM * MAX_DIM],
+                                           double B[2][MAX_DIM * 3])
+{
+    const float *col[MAX_DIM + 3 + DOT_BLOCK];
+    double r[2][DOT_BLOCK];
+    int a, b, c, k, o, n, i;
+    for (k = 0; k < 2; k++)
+        for (a = 0; a < nd; a++)
+            for (o = 0; o < NWP; o++)
+                v->wx[k][a][o] = v->w[k][o] * v->x[a][o];
+    for (a = 0; a < nd; a++) {
+        for (n = 0, b = a; b < nd; b++)
+            col[n++] = v->x[b];
+        for (c = 0; c < 3; c++)
+            col[n++] = v->y[c];
+        for (i = n; i % DOT_BLOCK; i++)
+            col[i] = col[n - 1]; /* the last block filled up, its extra sums unused */
+        for (i = 0; i < n; i += DOT_BLOCK) {
+            dots(v->wx[0][a], v->wx[1][a], col + i, r);
+            for (b = i; b < n && b < i + DOT_BLOCK; b++)
+                for (k = 0; k < 2; k++) {
+                    if (a + b < nd)
+                        M[k][a * nd + a + b] = M[k][(a + b) * nd + a] = r[k][b - i];
+                    else
+                        B[k][a * 3 + b - (nd - a)] = r[k][b - i];
+                }
+        }
+    }
+}
+
+/* Each bandwidth's local fit, coefficients beta[k] (nd × 3), evaluated over the window into
+ * v->fit; the sums over the columns in column order, the six of a LANES-wide run spelt out so
+ * that they stay in registers. */
+static ALWAYS_INLINE void fit_eval(struct window *v, int nd, float beta[2][MAX_DIM * 3])
+{
+    int o, a, l;
+    for (o = 0; o < NWP; o += LANES) {
+        float f[6][LANES] = {{0.0f}};
+        for (a = 0; a < nd; a++) {
+            const float *xa = v->x[a] + o, *b0 = beta[0] + a * 3, *b1 = beta[1] + a * 3;
+            for (l = 0; l < LANES; l++) {
+                f[0][l] += xa[l] * b0[0];
+                f[1][l] += xa[l] * b0[1];
+                f[2][l] += xa[l] * b0[2];
+                f[3][l] += xa[l] * b1[0];
+                f[4][l] += xa[l] * b1[1];
+                f[5][l] += xa[l] * b1[2];
+            }
+        }
+        for (a = 0; a < 6; a++)
+            for (l = 0; l < LANES; l++)
+                v->fit[a / 3][a % 3][o + l] = f[a][l];
     }
 }
 
@@ -392,10 +503,10 @@ static ALWAYS_INLINE void reg_tile_body(void *ctx, struct tile_worker *w, int x0
     struct reg_job *j = ctx;
     const int R = REG_R, nd = 3 + j->nf;
     int width = j->pl->width, tw = x1 - x0, th = y1 - y0;
-    int aw = tw + 2 * R, dx, dy, x, y, c, a, b, o, k;
-    size_t np = (size_t)tw * th, l, na = (size_t)aw * (size_t)(th + 2 * R) * 4;
+    int aw = tw + 2 * R, dx, dy, x, y, c, a, o, k;
+    size_t np = (size_t)tw * th, l, npl = (size_t)aw * (size_t)(th + 2 * R);
     float *dist = mc_malloc((np * NWP + np + scratch_floats(j->g)) * sizeof *dist);
-    float *acc = mc_calloc(2 * na, sizeof *acc);
+    float *acc = mc_calloc(8 * npl, sizeof *acc);
     struct window *v = mc_malloc(sizeof *v);
     size_t ti = (size_t)(y0 / MC_TILE) * (size_t)j->pl->ntx + (size_t)(x0 / MC_TILE);
     (void)w;
@@ -406,6 +517,7 @@ static ALWAYS_INLINE void reg_tile_body(void *ctx, struct tile_worker *w, int x0
         free(v);
         return;
     }
+    window_init(v);
     /* Every offset's distances for the whole tile, then per pixel its window's. */
     for (o = 0, dy = -R; dy <= R; dy++)
         for (dx = -R; dx <= R; dx++, o++) {
@@ -416,41 +528,29 @@ static ALWAYS_INLINE void reg_tile_body(void *ctx, struct tile_worker *w, int x0
         }
     for (y = y0; y < y1; y++)
         for (x = x0; x < x1; x++) {
+            double M[2][MAX_DIM * MAX_DIM], B[2][MAX_DIM * 3];
+            float beta[2][MAX_DIM * 3];
             l = (size_t)(y - y0) * tw + (size_t)(x - x0);
             window_fill(j, x, y, dist + l * NWP, v);
+            normal_equations(v, nd, M, B);
             for (k = 0; k < 2; k++) {
-                double M[MAX_DIM * MAX_DIM], B[MAX_DIM * 3];
-                float beta[MAX_DIM * 3], *t0 = acc + (size_t)k * na, *wk = v->w[k];
-                /* X^T W X and X^T W Y. */
-                for (a = 0; a < nd; a++) {
-                    for (o = 0; o < NWP; o++)
-                        v->wx[a][o] = wk[o] * v->x[a][o];
-                    for (b = a; b < nd; b++)
-                        M[a * nd + b] = M[b * nd + a] = dot(v->wx[a], v->x[b]);
-                    for (c = 0; c < 3; c++)
-                        B[a * 3 + c] = dot(v->wx[a], v->y[c]);
-                }
-                solve(M, nd, B);
+                solve(M[k], nd, B[k]);
                 for (a = 0; a < nd * 3; a++)
-                    beta[a] = (float)B[a];
-                /* The local fit evaluated over the window, weighted by the same weights (the
-                 * collaborative step): every pixel is the mean of the fits that cover it. */
-                for (c = 0; c < 3; c++) {
-                    float *fit = v->wx[c]; /* free again: the fit, channel c */
-                    for (o = 0; o < NWP; o++)
-                        fit[o] = 0.0f;
-                    for (a = 0; a < nd; a++)
-                        for (o = 0; o < NWP; o++)
-                            fit[o] += v->x[a][o] * beta[a * 3 + c];
-                }
-                for (o = 0, dy = -R; dy <= R; dy++) {
-                    float *t = t0 + ((size_t)(y - y0 + R + dy) * aw + (size_t)(x - x0)) * 4;
-                    for (dx = 0; dx < SIDE; dx++, o++, t += 4) {
-                        float wq = wk[o];
-                        for (c = 0; c < 3; c++)
-                            t[c] += wq * v->wx[c][o];
-                        t[3] += wq;
-                    }
+                    beta[k][a] = (float)B[k][a];
+            }
+            /* The local fit evaluated over the window, weighted by the same weights (the
+             * collaborative step): every pixel is the mean of the fits that cover it. */
+            fit_eval(v, nd, beta);
+            for (k = 0; k < 2; k++) {
+                const float *wk = v->w[k];
+                for (o = 0, dy = -R; dy <= R; dy++, o += SIDE) {
+                    float *t = acc + (size_t)k * 4 * npl + (size_t)(y - y0 + R + dy) * aw
+                               + (size_t)(x - x0);
+                    for (c = 0; c < 3; c++)
+                        for (dx = 0; dx < SIDE; dx++)
+                            t[c * npl + (size_t)dx] += wk[o + dx] * v->fit[k][c][o + dx];
+                    for (dx = 0; dx < SIDE; dx++)
+                        t[3 * npl + (size_t)dx] += wk[o + dx];
                 }
             }
         }
@@ -508,7 +608,7 @@ static mcrt_status regress(struct pool *pl, const struct guide *g, const float *
                      + 2 * REG_R;
             int ah = (ty * MC_TILE + MC_TILE > pl->height ? pl->height - ty * MC_TILE : MC_TILE)
                      + 2 * REG_R;
-            size_t na = (size_t)aw * (size_t)ah * 4;
+            size_t npl = (size_t)aw * (size_t)ah;
             if (!acc)
                 continue;
             for (k = 0; k < 2; k++)
@@ -519,7 +619,7 @@ static mcrt_status regress(struct pool *pl, const struct guide *g, const float *
                             continue;
                         for (c = 0; c < 4; c++)
                             sum[(((size_t)(y0 + y) * pl->width + (size_t)(x0 + x)) * 2 + k) * 4
-                                + c] += acc[(size_t)k * na + ((size_t)y * aw + x) * 4 + c];
+                                + c] += acc[((size_t)k * 4 + c) * npl + (size_t)y * aw + x];
                     }
             free(acc);
         }
