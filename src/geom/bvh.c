@@ -296,31 +296,29 @@ static ALWAYS_INLINE void tri4_test(const struct tri4 *k, const struct tri_ray *
     __m128 zs[3] = {_mm_mul_ps(r->sz, az), _mm_mul_ps(r->sz, bz), _mm_mul_ps(r->sz, cz)};
     __m128 ts = _mm_add_ps(_mm_add_ps(_mm_mul_ps(e0, zs[0]), _mm_mul_ps(e1, zs[1])),
                            _mm_mul_ps(e2, zs[2]));
-    __m128 neg = _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(e0, zero), _mm_cmplt_ps(e1, zero)),
-                           _mm_cmplt_ps(e2, zero));
-    __m128 pos = _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(e0, zero), _mm_cmpgt_ps(e1, zero)),
-                           _mm_cmpgt_ps(e2, zero));
     __m128 undecided = _mm_or_ps(_mm_or_ps(_mm_cmpeq_ps(e0, zero), _mm_cmpeq_ps(e1, zero)),
                                  _mm_or_ps(_mm_cmpeq_ps(e2, zero), _mm_cmpunord_ps(det, det)));
     const __m128 sign = _mm_set1_ps(-0.0f);
     const __m128i prim = _mm_load_si128((const __m128i *)k->prim);
-    __m128 shape = _mm_and_ps(neg, pos), reject;
-    /* Outside the triangle: edge functions of both signs. A block with quads (prim[lane] with
-     * MC_TRI4_QUAD; a triangle-only one skips this) rejects its quad lanes instead where e1 or e2
-     * is of the other sign than det or larger than |det|: s or t outside [0, 1]
-     * (mc_watertight_intersect; the lanes decided here have no zero edge function). Only sign
-     * bits of `outside` are read, as of the rest of `reject`. */
+    /* Outside the triangle: edge functions of both signs. The lanes decided here have no edge
+     * function zero or NaN, so that is a sign bit of e0 ^ e1 or e0 ^ e2 (three operations where
+     * comparing each with zero took eleven), and their det, a sum of three nonzero terms of one
+     * sign, is not 0. A block with quads (prim[lane] with MC_TRI4_QUAD; a triangle-only one skips
+     * this) rejects its quad lanes instead where det is 0, or e1 or e2 is of the other sign than
+     * det or larger than |det|: s or t outside [0, 1] (mc_watertight_intersect). Only sign bits
+     * of `shape` are read, as of the rest of `reject`. */
+    __m128 shape = _mm_or_ps(_mm_xor_ps(e0, e1), _mm_xor_ps(e0, e2)), reject;
     if ((unsigned)_mm_movemask_ps(_mm_castsi128_ps(prim)) & live) {
         __m128 quad = _mm_castsi128_ps(_mm_srai_epi32(prim, 31)), adet = _mm_andnot_ps(sign, det);
         __m128 outside = _mm_or_ps(_mm_or_ps(_mm_xor_ps(e1, det), _mm_xor_ps(e2, det)),
                                    _mm_or_ps(_mm_cmpgt_ps(_mm_andnot_ps(sign, e1), adet),
                                              _mm_cmpgt_ps(_mm_andnot_ps(sign, e2), adet)));
+        outside = _mm_or_ps(outside, _mm_cmpeq_ps(det, zero));
         shape = _mm_or_ps(_mm_and_ps(quad, outside), _mm_andnot_ps(quad, shape));
     }
-    /* Rejected: outside the shape; det = 0; ts = 0 or of the other sign than det (the sign bit
-     * of det ^ ts). */
-    reject = _mm_or_ps(_mm_or_ps(shape, _mm_xor_ps(det, ts)),
-                       _mm_or_ps(_mm_cmpeq_ps(det, zero), _mm_cmpeq_ps(ts, zero)));
+    /* Rejected: outside the shape; ts = 0 or of the other sign than det (the sign bit of
+     * det ^ ts). */
+    reject = _mm_or_ps(_mm_or_ps(shape, _mm_xor_ps(det, ts)), _mm_cmpeq_ps(ts, zero));
     unsigned und = (unsigned)_mm_movemask_ps(undecided) & live;
     unsigned cand = live & ~und & ~(unsigned)_mm_movemask_ps(reject);
     out->undecided = und;
