@@ -31,6 +31,9 @@ static const float reg_k[2] = {0.5f, 1.0f};
 #define DIST_CLAMP 10000.0f
 #define MIN_WEIGHT 1e-4f
 
+/* The width of the partial sums the vectorised loops keep (AVX2's 8 floats; SSE2 takes two
+ * registers for each), whatever the instruction set: the same sums in the same order. */
+#define LANES 8
 #define MAX_DIM (3 + MC_NFOR_MAX_FEATURES) /* regression columns: 1, x, y, the features */
 #define PAD (REG_R + REG_F) /* the widest reach of a patch around a window pixel */
 
@@ -104,9 +107,65 @@ static ALWAYS_INLINE void exp_neg(float *v, int n)
     }
 }
 
+/* Box sums: out[j] = Σ_{i < taps} in[j + i·step] for j < n, tap by tap from 0 (the order the
+ * bits depend on), LANES of them at a time held in registers. */
+static ALWAYS_INLINE void box_sum_taps(const float *in, size_t step, int taps, int n, float *out)
+{
+    int j = 0, i, l;
+    for (; j + LANES <= n; j += LANES) {
+        float s[LANES] = {0.0f};
+#pragma GCC unroll 8
+        for (i = 0; i < taps; i++)
+            for (l = 0; l < LANES; l++)
+                s[l] += in[(size_t)(j + l) + (size_t)i * step];
+        for (l = 0; l < LANES; l++)
+            out[j + l] = s[l];
+    }
+    for (; j < n; j++) {
+        float s = 0.0f;
+        for (i = 0; i < taps; i++)
+            s += in[(size_t)j + (size_t)i * step];
+        out[j] = s;
+    }
+}
+
+/* box_sum_taps, its taps unrolled for the patch sizes used. */
+static ALWAYS_INLINE void box_sum(const float *in, size_t step, int taps, int n, float *out)
+{
+    if (taps == 2 * PRE_F + 1)
+        box_sum_taps(in, step, 2 * PRE_F + 1, n, out);
+    else if (taps == 2 * MAP_F + 1)
+        box_sum_taps(in, step, 2 * MAP_F + 1, n, out);
+    else
+        box_sum_taps(in, step, taps, n, out);
+}
+
+/* out[x] = the largest of 0 and the gc channels of pixel x of row, x < n (all finite, patch_dist's
+ * distances). */
+static ALWAYS_INLINE void channel_max_n(const float *row, int gc, int n, float *out)
+{
+    int x, c;
+    for (x = 0; x < n; x++) {
+        float m = 0.0f;
+        for (c = 0; c < gc; c++)
+            m = row[x * gc + c] > m ? row[x * gc + c] : m;
+        out[x] = m;
+    }
+}
+
+/* channel_max_n, unrolled for colour guides. */
+static ALWAYS_INLINE void channel_max(const float *row, int gc, int n, float *out)
+{
+    if (gc == 3)
+        channel_max_n(row, 3, n, out);
+    else
+        channel_max_n(row, gc, n, out);
+}
+
 /* The NL-means patch distances of pixel p = (x, y) against p + (dx, dy), for every p of the tile
  * [x0, x1) × [y0, y1), into wt (row-major, tile-sized): the largest over the channels, for the
- * least similar channel decides (Tungsten takes the minimum weight). scratch holds 2·(T + 2f)²·gc floats.
+ * least similar channel decides (Tungsten takes the minimum weight). scratch holds
+ * scratch_floats(g, x1 - x0) floats.
  * Pixels outside the image read the padded guide's copies of its border. Each loop runs along
  * rows of contiguous floats (a row's pixels and their channels), so that it vectorises. */
 static ALWAYS_INLINE void patch_dist(const struct guide *g, int width, int x0, int y0, int x1, int y1,
@@ -128,34 +187,18 @@ static ALWAYS_INLINE void patch_dist(const struct guide *g, int width, int x0, i
             dr[i] = dd < DIST_CLAMP ? dd : DIST_CLAMP;
         }
     }
-    /* The box filter over the patch, separably: rows into tmp, then columns, each sum taken
-     * tap by tap over a whole row. */
-    for (y = 0; y < ph; y++) {
-        float *t = tmp + (size_t)y * tr;
-        const float *dr = dist + (size_t)y * rw;
-        for (j = 0; j < tr; j++)
-            t[j] = 0.0f;
-        for (i = 0; i <= 2 * f; i++)
-            for (j = 0; j < tr; j++)
-                t[j] += dr[j + i * gc];
-    }
+    /* The box filter over the patch, separably: rows into tmp, then columns. */
+    for (y = 0; y < ph; y++)
+        box_sum(dist + (size_t)y * rw, (size_t)gc, 2 * f + 1, tr, tmp + (size_t)y * tr);
     for (y = 0; y < th; y++) {
-        for (j = 0; j < tr; j++)
-            col[j] = 0.0f;
-        for (i = 0; i <= 2 * f; i++)
-            for (j = 0; j < tr; j++)
-                col[j] += tmp[(size_t)(y + i) * tr + j];
+        box_sum(tmp + (size_t)y * tr, (size_t)tr, 2 * f + 1, tr, col);
         for (j = 0; j < tr; j++)
             col[j] *= norm;
         for (x = 0; x < tw && g->each; x++)
             for (c = 0; c < gc; c++)
                 wt[(size_t)c * tw * th + (size_t)y * tw + x] = col[x * gc + c] > 0.0f ? col[x * gc + c] : 0.0f;
-        for (x = 0; x < tw && !g->each; x++) {
-            float dmax = 0.0f;
-            for (c = 0; c < gc; c++)
-                dmax = col[x * gc + c] > dmax ? col[x * gc + c] : dmax;
-            wt[(size_t)y * tw + x] = dmax;
-        }
+        if (!g->each)
+            channel_max(col, gc, tw, wt + (size_t)y * tw);
     }
 }
 
@@ -168,14 +211,16 @@ static ALWAYS_INLINE void weights(float *wt, int n, int centre)
         wt[i] = wt[i] < MIN_WEIGHT ? MIN_WEIGHT : wt[i];
 }
 
-static size_t scratch_floats(const struct guide *g)
+/* patch_dist's scratch for tiles up to tw wide and MC_TILE high. */
+static size_t scratch_floats(const struct guide *g, int tw)
 {
-    size_t p = (size_t)(MC_TILE + 2 * g->f);
-    return (2 * p * p + MC_TILE) * (size_t)g->gc;
+    size_t f2 = (size_t)(2 * g->f), w = (size_t)tw;
+    return ((2 * w + f2) * (MC_TILE + f2) + w) * (size_t)g->gc;
 }
 
-/* Run fn over the tiles of the image on the pool's threads. */
-static mcrt_status run(struct pool *pl, mc_tile_fn fn, void *ctx, mc_diag *d)
+/* Run fn over the tiles of the image on the pool's threads; with bands, over bands of MC_TILE
+ * rows, each a tile of the runner's with x0 = 0, x1 = 1 standing for the image's width. */
+static mcrt_status run(struct pool *pl, int bands, mc_tile_fn fn, void *ctx, mc_diag *d)
 {
     struct render_settings rs;
     struct tile_result tr;
@@ -183,7 +228,7 @@ static mcrt_status run(struct pool *pl, mc_tile_fn fn, void *ctx, mc_diag *d)
     memset(&rs, 0, sizeof rs);
     rs.threads = pl->threads;
     pl->status = MCRT_OK;
-    st = mc_tiles_run(&rs, 0, 0, pl->width, pl->height, fn, ctx, &tr, d);
+    st = mc_tiles_run(&rs, 0, 0, bands ? 1 : pl->width, pl->height, fn, ctx, &tr, d);
     if (st == MCRT_OK && pl->status != MCRT_OK)
         st = mc_fail(d, pl->status, "out of memory for the denoiser's tiles");
     return st;
@@ -206,7 +251,7 @@ static ALWAYS_INLINE void nlm_tile_body(void *ctx, struct tile_worker *w, int x0
     int width = j->pl->width, height = j->pl->height, tw = x1 - x0, th = y1 - y0;
     int sc = j->sc, wc = j->g->each ? sc : 1, dx, dy, x, y, c;
     size_t np = (size_t)tw * th, n = (size_t)width * (size_t)height;
-    float *wt = mc_malloc((np * (size_t)wc + scratch_floats(j->g)) * sizeof *wt);
+    float *wt = mc_malloc((np * (size_t)wc + scratch_floats(j->g, tw)) * sizeof *wt);
     /* Per channel a plane of sums of weighted values, then per weight channel one of weights. */
     double *acc = mc_calloc(np * (size_t)(sc + wc), sizeof *acc), *wsum = acc + np * (size_t)sc;
     (void)w;
@@ -255,15 +300,31 @@ static ALWAYS_INLINE void nlm_tile_body(void *ctx, struct tile_worker *w, int x0
     free(acc);
 }
 
-static void nlm_tile(void *ctx, struct tile_worker *w, int x0, int y0, int x1, int y1)
+/* A band of rows [y0, y1) (run's bands), as tiles NLM_W wide: wider than the runner's tiles, so
+ * that the padding of the patches around a tile is recomputed less often and the loops along a
+ * tile's rows are long (the result is the same for any tiling: a pixel's sums over the offsets
+ * are taken in the same order). */
+enum { NLM_W = 128 };
+static ALWAYS_INLINE void nlm_band_body(void *ctx, struct tile_worker *w, int y0, int y1)
 {
-    nlm_tile_body(ctx, w, x0, y0, x1, y1);
+    struct nlm_job *j = ctx;
+    int x;
+    for (x = 0; x < j->pl->width; x += NLM_W)
+        nlm_tile_body(ctx, w, x, y0, x + NLM_W < j->pl->width ? x + NLM_W : j->pl->width, y1);
+}
+static void nlm_band(void *ctx, struct tile_worker *w, int x0, int y0, int x1, int y1)
+{
+    (void)x0;
+    (void)x1;
+    nlm_band_body(ctx, w, y0, y1);
 }
 #ifdef NFOR_AVX_DISPATCH
-static AVX2_TARGET void nlm_tile_avx2(void *ctx, struct tile_worker *w, int x0, int y0, int x1,
+static AVX2_TARGET void nlm_band_avx2(void *ctx, struct tile_worker *w, int x0, int y0, int x1,
                                       int y1)
 {
-    nlm_tile_body(ctx, w, x0, y0, x1, y1);
+    (void)x0;
+    (void)x1;
+    nlm_band_body(ctx, w, y0, y1);
 }
 #endif
 
@@ -289,10 +350,10 @@ static mcrt_status nlm(struct pool *pl, const struct guide *g, const float *src,
     j.dst = dst;
 #ifdef NFOR_AVX_DISPATCH
     if (__builtin_cpu_supports("avx2"))
-        st = run(pl, nlm_tile_avx2, &j, d);
+        st = run(pl, 1, nlm_band_avx2, &j, d);
     else
 #endif
-        st = run(pl, nlm_tile, &j, d);
+        st = run(pl, 1, nlm_band, &j, d);
     free(planes);
     return st;
 }
@@ -337,7 +398,7 @@ static void solve(double *M, int n, double *b)
 
 /* The regression's window: offset o = (dy + R)·SIDE + (dx + R), padded with zero weights to NWP,
  * a multiple of LANES. */
-enum { SIDE = 2 * REG_R + 1, NW = SIDE * SIDE, LANES = 8, NWP = (NW + LANES - 1) / LANES * LANES };
+enum { SIDE = 2 * REG_R + 1, NW = SIDE * SIDE, NWP = (NW + LANES - 1) / LANES * LANES };
 
 /* Σ_o a_k[o]·col_b[o] for both bandwidths' a_0 and a_1 and DOT_BLOCK columns, into out[k][b],
  * each in LANES partial sums added in double at the end: the same operations in the same order
@@ -505,7 +566,7 @@ static ALWAYS_INLINE void reg_tile_body(void *ctx, struct tile_worker *w, int x0
     int width = j->pl->width, tw = x1 - x0, th = y1 - y0;
     int aw = tw + 2 * R, dx, dy, x, y, c, a, o, k;
     size_t np = (size_t)tw * th, l, npl = (size_t)aw * (size_t)(th + 2 * R);
-    float *dist = mc_malloc((np * NWP + np + scratch_floats(j->g)) * sizeof *dist);
+    float *dist = mc_malloc((np * NWP + np + scratch_floats(j->g, MC_TILE)) * sizeof *dist);
     float *acc = mc_calloc(8 * npl, sizeof *acc);
     struct window *v = mc_malloc(sizeof *v);
     size_t ti = (size_t)(y0 / MC_TILE) * (size_t)j->pl->ntx + (size_t)(x0 / MC_TILE);
@@ -595,10 +656,10 @@ static mcrt_status regress(struct pool *pl, const struct guide *g, const float *
     }
 #ifdef NFOR_AVX_DISPATCH
     if (__builtin_cpu_supports("avx2"))
-        st = run(pl, reg_tile_avx2, &j, d);
+        st = run(pl, 0, reg_tile_avx2, &j, d);
     else
 #endif
-        st = run(pl, reg_tile, &j, d);
+        st = run(pl, 0, reg_tile, &j, d);
     /* The tiles' overlapping sums, in tile order whatever the threads' order was. */
     for (ty = 0; ty < nty; ty++)
         for (tx = 0; tx < pl->ntx; tx++) {
