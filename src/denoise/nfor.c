@@ -400,31 +400,39 @@ static void solve(double *M, int n, double *b)
  * a multiple of LANES. */
 enum { SIDE = 2 * REG_R + 1, NW = SIDE * SIDE, NWP = (NW + LANES - 1) / LANES * LANES };
 
-/* Σ_o a_k[o]·col_b[o] for both bandwidths' a_0 and a_1 and DOT_BLOCK columns, into out[k][b],
- * each in LANES partial sums added in double at the end: the same operations in the same order
- * whatever vector width the compiler picks. The columns go together so that each a_k is loaded
- * once for all of them and the 2·DOT_BLOCK sums stay in registers (all but 5 of AVX2's 16);
- * each spelt out, as GCC keeps an array indexed by a loop in memory. */
+/* Σ_o a_k[o]·col_b[o] for both bandwidths' a_0 and a_1 and nb <= DOT_BLOCK columns, into
+ * out[k][b], each in LANES partial sums added in double at the end: the same operations in the
+ * same order whatever vector width the compiler picks. The columns go together so that each a_k
+ * is loaded once for all of them and the 2·DOT_BLOCK sums stay in registers (all but 5 of
+ * AVX2's 16): each spelt out, as GCC keeps an array indexed by a loop in memory, and called with
+ * a constant nb, which inlining folds. */
 enum { DOT_BLOCK = 4 };
-static ALWAYS_INLINE void dots(const float *a0, const float *a1, const float *const *col,
+static ALWAYS_INLINE void dots(const float *a0, const float *a1, const float *const *col, int nb,
                                double out[2][DOT_BLOCK])
 {
-    const float *c0 = col[0], *c1 = col[1], *c2 = col[2], *c3 = col[3];
+    const float *c0 = col[0], *c1 = col[nb > 1], *c2 = col[nb > 2 ? 2 : 0];
+    const float *c3 = col[nb > 3 ? 3 : 0];
     float s[2][DOT_BLOCK][LANES] = {{{0.0f}}};
     int o, l, b, k;
     for (o = 0; o < NWP; o += LANES)
         for (l = 0; l < LANES; l++) {
             s[0][0][l] += a0[o + l] * c0[o + l];
-            s[0][1][l] += a0[o + l] * c1[o + l];
-            s[0][2][l] += a0[o + l] * c2[o + l];
-            s[0][3][l] += a0[o + l] * c3[o + l];
             s[1][0][l] += a1[o + l] * c0[o + l];
-            s[1][1][l] += a1[o + l] * c1[o + l];
-            s[1][2][l] += a1[o + l] * c2[o + l];
-            s[1][3][l] += a1[o + l] * c3[o + l];
+            if (nb > 1) {
+                s[0][1][l] += a0[o + l] * c1[o + l];
+                s[1][1][l] += a1[o + l] * c1[o + l];
+            }
+            if (nb > 2) {
+                s[0][2][l] += a0[o + l] * c2[o + l];
+                s[1][2][l] += a1[o + l] * c2[o + l];
+            }
+            if (nb > 3) {
+                s[0][3][l] += a0[o + l] * c3[o + l];
+                s[1][3][l] += a1[o + l] * c3[o + l];
+            }
         }
     for (k = 0; k < 2; k++)
-        for (b = 0; b < DOT_BLOCK; b++) {
+        for (b = 0; b < nb; b++) {
             double t = 0.0;
             for (l = 0; l < LANES; l++)
                 t += s[k][b][l];
@@ -506,7 +514,7 @@ static ALWAYS_INLINE void window_fill(const struct reg_job *j, int x, int y, con
 static ALWAYS_INLINE void normal_equations(struct window *v, int nd, double M[2][MAX_DIM * MAX_DIM],
                                            double B[2][MAX_DIM * 3])
 {
-    const float *col[MAX_DIM + 3 + DOT_BLOCK];
+    const float *col[MAX_DIM + 3];
     double r[2][DOT_BLOCK];
     int a, b, c, k, o, n, i;
     for (k = 0; k < 2; k++)
@@ -518,10 +526,14 @@ static ALWAYS_INLINE void normal_equations(struct window *v, int nd, double M[2]
             col[n++] = v->x[b];
         for (c = 0; c < 3; c++)
             col[n++] = v->y[c];
-        for (i = n; i % DOT_BLOCK; i++)
-            col[i] = col[n - 1]; /* the last block filled up, its extra sums unused */
         for (i = 0; i < n; i += DOT_BLOCK) {
-            dots(v->wx[0][a], v->wx[1][a], col + i, r);
+            const float *wa0 = v->wx[0][a], *wa1 = v->wx[1][a];
+            switch (n - i) {
+            case 1: dots(wa0, wa1, col + i, 1, r); break;
+            case 2: dots(wa0, wa1, col + i, 2, r); break;
+            case 3: dots(wa0, wa1, col + i, 3, r); break;
+            default: dots(wa0, wa1, col + i, DOT_BLOCK, r); break;
+            }
             for (b = i; b < n && b < i + DOT_BLOCK; b++)
                 for (k = 0; k < 2; k++) {
                     if (a + b < nd)
