@@ -145,12 +145,11 @@ static ALWAYS_INLINE void box_sum(const float *in, size_t step, int taps, int n,
 static ALWAYS_INLINE void channel_max_n(const float *row, int gc, int n, float *out)
 {
     int x, c;
-    for (x = 0; x < n; x++) {
-        float m = 0.0f;
-        for (c = 0; c < gc; c++)
-            m = row[x * gc + c] > m ? row[x * gc + c] : m;
-        out[x] = m;
-    }
+    for (x = 0; x < n; x++)
+        out[x] = 0.0f;
+    for (c = 0; c < gc; c++)
+        for (x = 0; x < n; x++)
+            out[x] = row[x * gc + c] > out[x] ? row[x * gc + c] : out[x];
 }
 
 /* channel_max_n, unrolled for colour guides. */
@@ -194,9 +193,11 @@ static ALWAYS_INLINE void patch_dist(const struct guide *g, int width, int x0, i
         box_sum(tmp + (size_t)y * tr, (size_t)tr, 2 * f + 1, tr, col);
         for (j = 0; j < tr; j++)
             col[j] *= norm;
-        for (x = 0; x < tw && g->each; x++)
-            for (c = 0; c < gc; c++)
-                wt[(size_t)c * tw * th + (size_t)y * tw + x] = col[x * gc + c] > 0.0f ? col[x * gc + c] : 0.0f;
+        for (c = 0; c < gc && g->each; c++) {
+            float *o = wt + (size_t)c * tw * th + (size_t)y * tw;
+            for (x = 0; x < tw; x++)
+                o[x] = col[x * gc + c] > 0.0f ? col[x * gc + c] : 0.0f;
+        }
         if (!g->each)
             channel_max(col, gc, tw, wt + (size_t)y * tw);
     }
@@ -434,6 +435,7 @@ static ALWAYS_INLINE void dots(const float *a0, const float *a1, const float *co
     for (k = 0; k < 2; k++)
         for (b = 0; b < nb; b++) {
             double t = 0.0;
+#pragma GCC unroll 8
             for (l = 0; l < LANES; l++)
                 t += s[k][b][l];
             out[k][b] = t;
@@ -564,9 +566,14 @@ static ALWAYS_INLINE void fit_eval(struct window *v, int nd, float beta[2][MAX_D
                 f[5][l] += xa[l] * b1[2];
             }
         }
-        for (a = 0; a < 6; a++)
-            for (l = 0; l < LANES; l++)
-                v->fit[a / 3][a % 3][o + l] = f[a][l];
+        for (l = 0; l < LANES; l++) {
+            v->fit[0][0][o + l] = f[0][l];
+            v->fit[0][1][o + l] = f[1][l];
+            v->fit[0][2][o + l] = f[2][l];
+            v->fit[1][0][o + l] = f[3][l];
+            v->fit[1][1][o + l] = f[4][l];
+            v->fit[1][2][o + l] = f[5][l];
+        }
     }
 }
 
