@@ -179,12 +179,31 @@ static int word_channel(const char *channel, const struct image_words *words, in
     return *k < words->per_pixel;
 }
 
+/* The library's compressor, then a chunk whose deflate output is exactly as long as its raw bytes
+ * replaced by the raw bytes: every EXR reader takes a chunk of the raw size as stored raw, but
+ * OpenEXRCore before 3.4.8 keeps the raw bytes only when deflate's output is longer (its issue
+ * 2306), so such a chunk (one in a few hundred of a noisy render's) was decoded as garbage. */
+struct encoder {
+    exr_encode_pipeline_t enc; /* first: the callback's pointer is the struct's */
+    exr_result_t (*library_compress)(exr_encode_pipeline_t *enc);
+};
+
+static exr_result_t compress_chunk(exr_encode_pipeline_t *enc)
+{
+    exr_result_t rv = ((struct encoder *)enc)->library_compress(enc);
+    if (rv == EXR_ERR_SUCCESS && enc->compressed_bytes == enc->packed_bytes &&
+        enc->compressed_buffer != enc->packed_buffer)
+        memcpy(enc->compressed_buffer, enc->packed_buffer, enc->packed_bytes);
+    return rv;
+}
+
 /* Encode the layers (and words) chunk by chunk (16 scanlines per ZIP chunk). The library's pack
  * step gathers each channel from our interleaved rows through the pixel and line strides. */
 static exr_result_t encode_pixels(exr_context_t ctx, const struct image_layer *layers, int n,
                                   const struct image_words *words, int w, int h)
 {
-    exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
+    struct encoder coder = {EXR_ENCODE_PIPELINE_INITIALIZER, NULL};
+    exr_encode_pipeline_t *enc = &coder.enc;
     exr_chunk_info_t cinfo;
     exr_result_t rv;
     int32_t lines;
@@ -194,12 +213,12 @@ static exr_result_t encode_pixels(exr_context_t ctx, const struct image_layer *l
     for (y = 0; rv == EXR_ERR_SUCCESS && y < h; y += lines) {
         rv = exr_write_scanline_chunk_info(ctx, 0, y, &cinfo);
         if (rv == EXR_ERR_SUCCESS)
-            rv = started ? exr_encoding_update(ctx, 0, &cinfo, &enc)
-                         : exr_encoding_initialize(ctx, 0, &cinfo, &enc);
+            rv = started ? exr_encoding_update(ctx, 0, &cinfo, enc)
+                         : exr_encoding_initialize(ctx, 0, &cinfo, enc);
         if (rv != EXR_ERR_SUCCESS)
             break;
-        for (c = 0; c < enc.channel_count; c++) {
-            exr_coding_channel_info_t *ch = &enc.channels[c];
+        for (c = 0; c < enc->channel_count; c++) {
+            exr_coding_channel_info_t *ch = &enc->channels[c];
             /* The file lists channels alphabetically (B, G, R, variance.B, ...); our pixels are
              * R, G, B per layer. */
             int k;
@@ -215,14 +234,19 @@ static exr_result_t encode_pixels(exr_context_t ctx, const struct image_layer *l
                 (const uint8_t *)(rgb + (size_t)cinfo.start_y * (size_t)w * 3 + (size_t)k);
             set_layout(ch, (size_t)w, 3, EXR_PIXEL_FLOAT);
         }
-        if (!started)
-            rv = exr_encoding_choose_default_routines(ctx, 0, &enc);
+        if (!started) {
+            rv = exr_encoding_choose_default_routines(ctx, 0, enc);
+            if (enc->compress_fn) {
+                coder.library_compress = enc->compress_fn;
+                enc->compress_fn = compress_chunk;
+            }
+        }
         started = 1;
         if (rv == EXR_ERR_SUCCESS)
-            rv = exr_encoding_run(ctx, 0, &enc);
+            rv = exr_encoding_run(ctx, 0, enc);
     }
     if (started)
-        exr_encoding_destroy(ctx, &enc);
+        exr_encoding_destroy(ctx, enc);
     return rv;
 }
 
