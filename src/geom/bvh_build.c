@@ -916,31 +916,31 @@ static uint32_t emit_node(struct collapse *c, uint32_t x)
 }
 
 /* The wide BVH over the binary tree bn[0, count) into b: nodes and blocks. prims are in leaf
- * order. Returns 0 when out of memory (b is then left for mc_bvh_free). */
+ * order. scratch (from malloc, or NULL) is memory of scratch_bytes that collapse may use, and
+ * frees. Returns 0 when out of memory (b is then left for mc_bvh_free). */
 static int collapse(const struct bnode *bn, size_t count, const struct prim *prims,
                     void *scratch, size_t scratch_bytes, struct bvh *b)
 {
     struct collapse c;
-    /* The plan and the costs go into the caller's scratch memory when they fit: pages already
-     * mapped, where fresh ones would cost a page fault each (about 1.5 us on this project's
-     * machine, 430 of a 65,536-triangle build's). */
-    size_t cost_bytes = count * sizeof(float[BVH_WIDTH]), plan_bytes = count * sizeof(struct plan);
-    int own = cost_bytes + plan_bytes > scratch_bytes;
-    float (*cost)[BVH_WIDTH] = own ? mc_malloc(cost_bytes) : scratch;
-    struct plan *plan = own ? mc_malloc(plan_bytes) : (struct plan *)((char *)scratch + cost_bytes);
+    /* The costs go into the caller's scratch memory when they fit: pages already mapped, where
+     * fresh ones would cost a page fault each (about 1.5 us on this project's machine, 260 of a
+     * 65,536-triangle build's). The scratch memory is freed with them, before the wide nodes are
+     * made (peak memory). */
+    size_t cost_bytes = count * sizeof(float[BVH_WIDTH]);
+    float (*cost)[BVH_WIDTH] = cost_bytes <= scratch_bytes ? scratch : mc_malloc(cost_bytes);
+    struct plan *plan = mc_malloc(count * sizeof *plan);
     /* Bounds: each wide node but a one-leaf root makes one binary inner node a wide node; merging
      * leaves never adds blocks (ceil((a + b)/4) <= ceil(a/4) + ceil(b/4)). */
     size_t inner = (count - 2) / 2, blocks = 0, i;
-    if (!plan || !cost) {
-        if (own) {
-            free(plan);
-            free(cost);
-        }
+    if (cost && plan)
+        plan_collapse(bn, count, plan, cost);
+    if ((void *)cost != scratch)
+        free(cost);
+    free(scratch);
+    if (!cost || !plan) {
+        free(plan);
         return 0;
     }
-    plan_collapse(bn, count, plan, cost);
-    if (own)
-        free(cost);
     for (i = 0; i < count; i++)
         blocks += bn[i].count ? mc_tri4_blocks(bn[i].count) : 0;
     c.bn = bn;
@@ -951,8 +951,7 @@ static int collapse(const struct bnode *bn, size_t count, const struct prim *pri
     c.tri4 = alloc_large(blocks * sizeof *c.tri4);
     if (c.nodes && c.tri4)
         emit_node(&c, 0);
-    if (own)
-        free(plan);
+    free(plan);
     /* Give back the unused tails. A shrinking realloc keeps the block in place in practice; if it
      * moved, the arrays would still be 16-byte aligned, which is all the SIMD loads assume. */
     b->nodes = mc_shrink(c.nodes, c.node_count * sizeof *c.nodes);
@@ -1071,10 +1070,11 @@ mcrt_status mc_bvh_build_threads(struct bvh *b, struct prim *prims, const struct
         order[i] = refs[i].id;
     if (!permute_in_place(n))
         order = mc_shrink(refs, n * sizeof *order);
-    ok = permute_prims(prims, order, (uint32_t)n)
-         && collapse(bin, bin_count, prims, permute_in_place(n) ? (void *)order : NULL,
-                     permute_in_place(n) ? n * sizeof *refs : 0, b);
-    free(order);
+    ok = permute_prims(prims, order, (uint32_t)n);
+    if (ok)
+        ok = collapse(bin, bin_count, prims, order, permute_in_place(n) ? n * sizeof *refs : 0, b);
+    else
+        free(order);
     if (!ok) {
         free(bin);
         mc_bvh_free(b);
