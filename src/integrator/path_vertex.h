@@ -107,7 +107,7 @@ static inline vec3 light_sample(const struct scene *s, const struct surface *sf,
          * occludes the segment. */
         target = v3_is_zero(ls.normal)
                      ? ls.point
-                     : ray_spawn(ls.point, ls.normal, mc_prim_point_error(&s->prims[s->lights[li].prim]));
+                     : ray_spawn(ls.point, ls.normal, s->lights[li].point_error);
         shadow.d = v3_sub(target, shadow.o);
         shadow.tmax = v3_length(shadow.d);
         if (!(shadow.tmax > 0.0f))

@@ -411,7 +411,7 @@ static void trace_photon(const struct pass_ctx *c, struct chunk *ch, uint64_t in
     if (v3_is_zero(beta) || !v3_is_finite(beta))
         return;
     r.o = s->lights[li].kind == LIGHT_AREA
-              ? ray_spawn(e.p, e.n, mc_prim_point_error(&s->prims[s->lights[li].prim]))
+              ? ray_spawn(e.p, e.n, s->lights[li].point_error)
               : e.p;
     r.d = e.d;
     r.tmax = INFINITY;

@@ -9,7 +9,7 @@ double mc_area_light_power(const struct light_scene *s, const struct light *l)
 {
     const struct prim *p = &s->prims[l->prim];
     float sides = (p->flags & PRIM_TWO_SIDED) ? 2.0f : 1.0f;
-    return MC_PI * sides * mc_prim_area(p) * v3_avg(p->emit);
+    return MC_PI * sides * l->area * v3_avg(p->emit);
 }
 
 /* A planar emitter's normals are all its front normal (flip applied), which sampling any point
@@ -26,7 +26,7 @@ int mc_area_light_bounds(const struct light_scene *s, const struct light *l, str
     if (p->kind == PRIM_SPHERE)
         b->phi = MC_PI * MC_PI * p->p[1].x * p->p[1].x * v3_avg(p->emit);
     else {
-        b->phi = MC_PI * mc_prim_area(p) * v3_avg(p->emit);
+        b->phi = MC_PI * l->area * v3_avg(p->emit);
         mc_prim_sample_area(p, v2(0.5f, 0.5f), &b->axis);
         b->cos_o = 1.0f;
     }
@@ -87,7 +87,8 @@ static int sphere_cone_applies(const struct prim *pr, vec3 p)
     return v3_length2(v3_sub(p, pr->p[0])) > r2 * (1.0f + 1e-3f);
 }
 
-static int sample_area(const struct prim *pr, vec3 p, vec2 u, struct light_sample *out)
+static int sample_area(const struct light *l, const struct prim *pr, vec3 p, vec2 u,
+                       struct light_sample *out)
 {
     vec3 n, q, w;
     float dist2, dist, cos_l;
@@ -107,7 +108,7 @@ static int sample_area(const struct prim *pr, vec3 p, vec2 u, struct light_sampl
     out->normal = v3_dot(n, w) < 0.0f ? n : v3_neg(n);
     out->wi = w;
     out->dist = dist;
-    out->pdf = dist2 / (cos_l * mc_prim_area(pr));
+    out->pdf = dist2 / (cos_l * l->area);
     out->L = pr->emit;
     out->delta = 0;
     return isfinite(out->pdf);
@@ -132,7 +133,7 @@ int mc_area_light_sample(const struct light_scene *s, const struct light *l, vec
     const struct prim *pr = &s->prims[l->prim];
     struct rigid x;
     int moving = light_frame(s, pr, time, &x);
-    if (!sample_area(pr, moving ? rigid_inv_point(&x, p) : p, u, out))
+    if (!sample_area(l, pr, moving ? rigid_inv_point(&x, p) : p, u, out))
         return 0;
     if (moving) {
         out->wi = rigid_vector(&x, out->wi);
@@ -161,7 +162,7 @@ float mc_area_light_pdf(const struct light_scene *s, const struct light *l, vec3
     cos_l = fabsf(v3_dot(sf->ng, wi));
     if (!(cos_l > 0.0f))
         return 0.0f;
-    return t * t / (cos_l * mc_prim_area(pr));
+    return t * t / (cos_l * l->area);
 }
 
 /* A point uniform by area (pdf 1/A) and a cosine-weighted direction about the normal of the side
@@ -174,7 +175,7 @@ int mc_area_light_emission(const struct light_scene *s, const struct light *l, f
     struct rigid x;
     vec3 n, local;
     frame f;
-    float area = mc_prim_area(pr), sides = 1.0f;
+    float area = l->area, sides = 1.0f;
     out->p = mc_prim_sample_area(pr, u_pos, &n);
     if (pr->flags & PRIM_TWO_SIDED) {
         sides = 2.0f;

@@ -22,7 +22,10 @@ struct light {
     enum light_kind kind;
     vec3 position;   /* point */
     vec3 intensity;  /* point: W/sr; environment: radiance */
-    uint32_t prim;   /* area: the emitting primitive */
+    uint32_t prim;   /* area: the emitting primitive, */
+    float area;      /* its area (mc_prim_area) and */
+    float point_error; /* the bound on its points' error (mc_prim_point_error), kept with the
+                        * light by scene/prepare.c so that sampling it does not recompute them */
     /* environment: the map (NULL: the constant sky of radiance `intensity`), which `intensity`
      * then scales; orient turns the map's own directions (light/envmap.h) into the world's;
      * image is 1 + the scene's image the map is made from (0: none), for preparation. */

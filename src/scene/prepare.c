@@ -164,6 +164,8 @@ mcrt_status mc_scene_prepare(struct scene *s, mc_diag *d)
             continue;
         l.kind = LIGHT_AREA;
         l.prim = (uint32_t)i;
+        l.area = mc_prim_area(p);
+        l.point_error = mc_prim_point_error(p);
         l.position = l.intensity = v3s(0.0f);
         p->light = mc_scene_add_light(s, &l);
         if (p->light < 0)
