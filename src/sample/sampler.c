@@ -28,34 +28,43 @@ static uint32_t permute_mask(uint32_t n)
     return w;
 }
 
+/* One pass of Kensler's hash, a bijection on [0, w] for w = 2^k - 1. */
+static inline uint32_t permute_hash(uint32_t i, uint32_t w, uint32_t key)
+{
+    i ^= key;
+    i *= 0xe170893du;
+    i ^= key >> 16;
+    i ^= (i & w) >> 4;
+    i ^= key >> 8;
+    i *= 0x0929eb3fu;
+    i ^= key >> 23;
+    i ^= (i & w) >> 1;
+    i *= 1u | key >> 27;
+    i *= 0x6935fa69u;
+    i ^= (i & w) >> 11;
+    i *= 0x74dcb303u;
+    i ^= (i & w) >> 2;
+    i *= 0x9e501cc3u;
+    i ^= (i & w) >> 2;
+    i *= 0xc860a3dfu;
+    i &= w;
+    return i ^ i >> 5;
+}
+
 /* mc_permute with its mask w = permute_mask(n) given (the sampler computes it once a pixel). */
 static inline uint32_t permute(uint32_t i, uint32_t n, uint32_t w, uint32_t key)
 {
     if (n <= 1)
         return 0;
+    /* n = w + 1, a power of two: one pass stays below n, and the remainder of the wrapped sum
+     * is its low bits. */
+    if (w + 1 == n)
+        return (permute_hash(i, w, key) + key) & w;
     /* Cycle-walking: the hash is a bijection on [0, w]; repeat until the value falls below n. */
-    do {
-        i ^= key;
-        i *= 0xe170893du;
-        i ^= key >> 16;
-        i ^= (i & w) >> 4;
-        i ^= key >> 8;
-        i *= 0x0929eb3fu;
-        i ^= key >> 23;
-        i ^= (i & w) >> 1;
-        i *= 1u | key >> 27;
-        i *= 0x6935fa69u;
-        i ^= (i & w) >> 11;
-        i *= 0x74dcb303u;
-        i ^= (i & w) >> 2;
-        i *= 0x9e501cc3u;
-        i ^= (i & w) >> 2;
-        i *= 0xc860a3dfu;
-        i &= w;
-        i ^= i >> 5;
-    } while (i >= n);
-    /* n = w + 1 divides 2^32, so the remainder of the wrapped sum is its low bits. */
-    return w + 1 == n ? (i + key) & w : (i + key) % n;
+    do
+        i = permute_hash(i, w, key);
+    while (i >= n);
+    return (i + key) % n;
 }
 
 uint32_t mc_permute(uint32_t i, uint32_t n, uint32_t key) { return permute(i, n, permute_mask(n), key); }
@@ -158,8 +167,12 @@ static uint32_t jitter24(struct sampler *s) { return pcg32_next(&s->rng) >> 8; }
  * along an axis) are kept exactly and the value is below 1. */
 static float fraction24(uint32_t v) { return (float)(v >> 8) * 0x1p-24f; }
 
-/* Two independent 32-bit Owen seeds per dimension, from a second hash of its key. */
-static uint64_t scramble_seeds(uint64_t key) { return mc_hash64(key ^ DIM_SALT); }
+/* Sobol: the sample's index in the dimension keyed by key, a permutation of [0, spp) by the key's
+ * low half (its high half is the dimension's Owen seed). */
+static inline uint32_t sobol_index(const struct sampler *s, uint64_t key)
+{
+    return permute(s->index, s->spp, s->mask[0], (uint32_t)key);
+}
 
 float mc_sampler_1d(struct sampler *s)
 {
@@ -172,14 +185,12 @@ float mc_sampler_1d(struct sampler *s)
     if (s->kind == SAMPLER_STRATIFIED)
         return in_stratum(stratum(s, s->spp, s->mask[0], key), s->spp, s->scale[0], s->shift[0],
                           jitter24(s));
-    /* The sample's index in this dimension is a permutation of [0, spp), like a stratum. */
-    return fraction24(mc_sobol_scrambled(stratum(s, s->spp, s->mask[0], key), 0,
-                                         (uint32_t)scramble_seeds(key)));
+    return fraction24(mc_sobol_scrambled(sobol_index(s, key), 0, (uint32_t)(key >> 32)));
 }
 
 vec2 mc_sampler_2d(struct sampler *s)
 {
-    uint64_t key, seeds;
+    uint64_t key, v;
     uint32_t k;
     float a;
     if (s->kind == SAMPLER_RANDOM) {
@@ -196,10 +207,12 @@ vec2 mc_sampler_2d(struct sampler *s)
         a = in_stratum(kx, s->nx, s->scale[1], s->shift[1], jitter24(s));
         return v2(a, in_stratum(ky, s->ny, s->scale[2], s->shift[2], jitter24(s)));
     }
-    k = stratum(s, s->spp, s->mask[0], key);
-    seeds = scramble_seeds(key);
-    return v2(fraction24(mc_sobol_scrambled(k, 0, (uint32_t)seeds)),
-              fraction24(mc_sobol_scrambled(k, 1, (uint32_t)(seeds >> 32))));
+    /* The key is a uniform 64-bit hash, so its halves are independent: the second coordinate's
+     * seed, the high half xored with a bijection of the low half, is uniform and independent of
+     * the first's (the pair is a bijection of the key). */
+    v = mc_sobol2_scrambled(sobol_index(s, key), (uint32_t)(key >> 32),
+                            (uint32_t)(key >> 32) ^ (uint32_t)key * 0x9e3779b9u);
+    return v2(fraction24((uint32_t)(v >> 32)), fraction24((uint32_t)v));
 }
 
 double mc_sampler_1d_double(struct sampler *s)
@@ -217,6 +230,6 @@ double mc_sampler_1d_double(struct sampler *s)
     }
     /* A 32-bit index leaves digits 33 and on of a Sobol point at 0; Owen's scramble carried to
      * those depths would make them independent uniform bits, which is what the stream supplies. */
-    v = mc_sobol_scrambled(stratum(s, s->spp, s->mask[0], key), 0, (uint32_t)scramble_seeds(key));
+    v = mc_sobol_scrambled(sobol_index(s, key), 0, (uint32_t)(key >> 32));
     return (double)((v << 21) | (pcg32_next(&s->rng) >> 11)) * 0x1p-53;
 }
