@@ -271,8 +271,8 @@ bench-error: all
 	MCRT=$(O)/mcrt sh tests/tools/predict_bench.sh
 
 # The denoiser's error reduction at 16 and 64 spp, its own error estimate and its time (issue 16).
-bench-denoise: all
-	MCRT=$(O)/mcrt sh tests/tools/denoise_bench.sh
+bench-denoise: all $(O)/tests/exr_average
+	MCRT=$(O)/mcrt EXR_AVERAGE=$(O)/tests/exr_average sh tests/tools/denoise_bench.sh
 
 # The README's denoiser figures, its convergence plot and crops of scenes/cornell.mcrt, into
 # $(O)/figures (tests/tools/denoise_figures.sh; the copies in docs/images come from it). Several
