@@ -102,7 +102,7 @@ expect metal "$(m 'metal eta 0.2 0.9 1.1 k 3.9 2.4 2.2')" "smooth conductor, eta
 expect rough-metal "$(m 'metal 0.75 alpha 0.1')" "GGX conductor, k from the reflectance" \
     '<bsdf type="roughconductor"><string name="distribution" value="ggx"/><float name="alpha" value="0.1"/><rgb name="eta" value="1, 1, 1"/><rgb name="k" value="3.464102, 3.464102, 3.464102"/>'
 expect plastic "$(m 'plastic 0.5 0.25 0.125 ior 1.6')" "plastic, linear" \
-    '<bsdf type="twosided" id="m1"><bsdf type="plastic"><rgb name="diffuse_reflectance" value="0.5, 0.25, 0.125"/><float name="int_ior" value="1.6"/><float name="ext_ior" value="1"/><boolean name="nonlinear" value="false"/></bsdf></bsdf>'
+    '<bsdf type="twosided" id="m1"><bsdf type="plastic"><rgb name="diffuse_reflectance" value="0.5, 0.25, 0.125"/><float name="int_ior" value="1.6"/><float name="ext_ior" value="1"/><boolean name="nonlinear" value="true"/></bsdf></bsdf>'
 expect white-plastic "$(m 'plastic 1 roughness 0.3')" "roughplastic, the base capped at 0.999" \
     '<bsdf type="roughplastic"><string name="distribution" value="ggx"/><float name="alpha" value="0.09"/><rgb name="diffuse_reflectance" value="0.999, 0.999, 0.999"/>'
 
