@@ -102,6 +102,8 @@ mcrt_status mcrt_denoise_file(const char *in, const char *out, int threads, doub
                               double *est_denoised, char *error, size_t error_size)
 {
     struct image im[3 + 2 * DENOISE_LAYERS]; /* A, B, the layers by half, emission.var */
+    char names[3 + 2 * DENOISE_LAYERS][32];
+    const char *name[3 + 2 * DENOISE_LAYERS];
     const float *halves[2], *layer[DENOISE_LAYERS][2];
     struct image_layer outl[2];
     float *rgb = NULL, *raw = NULL;
@@ -121,29 +123,36 @@ mcrt_status mcrt_denoise_file(const char *in, const char *out, int threads, doub
         goto done;
     }
     for (i = 0; i < 3 + 2 * DENOISE_LAYERS; i++) {
-        char name[32];
         if (i < 2)
-            snprintf(name, sizeof name, "%c", i ? 'B' : 'A');
+            snprintf(names[i], sizeof names[i], "%c", i ? 'B' : 'A');
         else if (i == 2 + 2 * DENOISE_LAYERS)
-            snprintf(name, sizeof name, "%s", MC_DENOISE_EMISSION_VAR);
+            snprintf(names[i], sizeof names[i], "%s", MC_DENOISE_EMISSION_VAR);
         else
-            snprintf(name, sizeof name, "%s.%c", mc_denoise_layer_names[(i - 2) / 2],
+            snprintf(names[i], sizeof names[i], "%s.%c", mc_denoise_layer_names[(i - 2) / 2],
                      i % 2 ? 'B' : 'A');
-        if ((st = mc_image_read_layer(in, name, &im[i], &d)) != MCRT_OK) {
-            /* An input that cannot be read at all is malformed; one without the layer is the
-             * wrong input. Either is bad input, which the caller tells from out of memory. */
-            struct image any;
-            if (st == MCRT_ERR_NOMEM)
-                goto done;
-            if (i > 0 || mc_image_read(in, &any, NULL) == MCRT_OK) {
-                if (i == 0)
-                    mc_image_free(&any);
-                st = mc_fail(&d, MCRT_ERR_INVALID, "%s: no layer %s; denoise an EXR saved by "
-                                                   "mcrt render --denoise", in, name);
-            } else
-                st = MCRT_ERR_PARSE; /* d holds why it cannot be read */
+        name[i] = names[i];
+    }
+    /* All the layers in one pass over the file. */
+    if ((st = mc_image_read_layers(in, name, 3 + 2 * DENOISE_LAYERS, im, &d)) != MCRT_OK) {
+        /* An input that cannot be read at all is malformed; one without a layer is the wrong
+         * input (the first one missing named). Either is bad input, which the caller tells from
+         * out of memory. */
+        struct image any;
+        if (st == MCRT_ERR_NOMEM)
+            goto done;
+        if (mc_image_read(in, &any, NULL) != MCRT_OK) {
+            st = MCRT_ERR_PARSE; /* d holds why it cannot be read */
             goto done;
         }
+        mc_image_free(&any);
+        for (i = 0; i < 3 + 2 * DENOISE_LAYERS; i++)
+            if (mc_image_read_layer(in, name[i], &any, NULL) != MCRT_OK)
+                break;
+            else
+                mc_image_free(&any);
+        st = mc_fail(&d, MCRT_ERR_INVALID, "%s: no layer %s; denoise an EXR saved by "
+                                           "mcrt render --denoise", in, name[i]);
+        goto done;
     }
     /* The layers of one EXR share its data window: one size. */
     w = im[0].width;

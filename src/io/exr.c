@@ -361,11 +361,12 @@ static int pick_channels(const exr_attr_chlist_t *chl, const char *layer, int id
     return 0;
 }
 
-/* Decode the chosen channels idx[0..count-1] of part 0 into data, count 4-byte elements of this
- * type per pixel, w pixels a row (half is converted to float on the way). */
+/* Decode the chosen channels idx[0..count-1] of part 0, channel k into the rows of to[k]: w pixels
+ * a row, per_pixel 4-byte elements of this type a pixel (half is converted to float on the way).
+ * One pass over the chunks, each decompressed once however many channels are wanted. */
 static exr_result_t decode_pixels(exr_context_t ctx, const exr_attr_box2i_t *dw, const int *idx,
-                                  int count, exr_pixel_type_t type, void *data, size_t w,
-                                  int *corrupt)
+                                  int count, exr_pixel_type_t type, uint8_t *const *to,
+                                  int per_pixel, size_t w, int *corrupt)
 {
     exr_decode_pipeline_t dec = EXR_DECODE_PIPELINE_INITIALIZER;
     exr_chunk_info_t cinfo;
@@ -390,9 +391,9 @@ static exr_result_t decode_pixels(exr_context_t ctx, const exr_attr_box2i_t *dw,
         /* Channels we do not want keep a NULL pointer, which the decoder skips. */
         for (k = 0; k < count; k++) {
             exr_coding_channel_info_t *ch = &dec.channels[idx[k]];
-            ch->decode_to_ptr = (uint8_t *)data + 4 * ((size_t)(cinfo.start_y - dw->min.y) * w *
-                                                           (size_t)count + (size_t)k);
-            set_layout(ch, w, count, type);
+            ch->decode_to_ptr =
+                to[k] + 4 * (size_t)(cinfo.start_y - dw->min.y) * w * (size_t)per_pixel;
+            set_layout(ch, w, per_pixel, type);
         }
         if (!started)
             rv = exr_decoding_choose_default_routines(ctx, 0, &dec);
@@ -405,16 +406,22 @@ static exr_result_t decode_pixels(exr_context_t ctx, const exr_attr_box2i_t *dw,
     return rv;
 }
 
-/* Check part 0 and read it; anything we refuse is explained in d with status MCRT_ERR_IO. */
-static mcrt_status read_part(exr_context_t ctx, struct exr_job *job, const char *layer,
-                             struct image *im, mc_diag *d)
+/* The most channels one read decodes: a render state's words (1 to 99), or MC_IMAGE_MAX_LAYERS
+ * layers of 3. */
+enum { MAX_CHANNELS = 99 };
+
+/* Check part 0 and read its n layers into ims; anything we refuse is explained in d with status
+ * MCRT_ERR_IO. */
+static mcrt_status read_part(exr_context_t ctx, struct exr_job *job, const char *const *layers,
+                             int n, struct image *ims, mc_diag *d)
 {
     exr_storage_t storage;
     exr_attr_box2i_t dw;
     const exr_attr_chlist_t *chl;
     exr_result_t rv;
-    int idx[3], k, corrupt = 0;
-    mcrt_status st;
+    uint8_t *to[MAX_CHANNELS];
+    int idx[MAX_CHANNELS], i, k, corrupt = 0;
+    mcrt_status st = MCRT_OK;
 
     if ((rv = exr_get_storage(ctx, 0, &storage)) != EXR_ERR_SUCCESS ||
         (rv = exr_get_data_window(ctx, 0, &dw)) != EXR_ERR_SUCCESS ||
@@ -423,12 +430,15 @@ static mcrt_status read_part(exr_context_t ctx, struct exr_job *job, const char 
     if (storage != EXR_STORAGE_SCANLINE)
         return mc_fail(d, MCRT_ERR_IO, "%s EXR images are not supported (only scanline ones)",
                        storage == EXR_STORAGE_TILED ? "tiled" : "deep");
-    if (!pick_channels(chl, layer, idx))
-        return layer ? mc_fail(d, MCRT_ERR_IO, "no layer '%s' (channels %s.R, .G, .B)", layer,
-                               layer)
-                     : mc_fail(d, MCRT_ERR_IO,
-                               "no R, G, B channels (nor LAYER.R, .G, .B) in the first part");
-    for (k = 0; k < 3; k++) {
+    for (i = 0; i < n; i++) {
+        const char *layer = layers ? layers[i] : NULL;
+        if (!pick_channels(chl, layer, idx + 3 * i))
+            return layer ? mc_fail(d, MCRT_ERR_IO, "no layer '%s' (channels %s.R, .G, .B)", layer,
+                                   layer)
+                         : mc_fail(d, MCRT_ERR_IO,
+                                   "no R, G, B channels (nor LAYER.R, .G, .B) in the first part");
+    }
+    for (k = 0; k < 3 * n; k++) {
         const exr_attr_chlist_entry_t *e = &chl->entries[idx[k]];
         if ((e->pixel_type != EXR_PIXEL_HALF && e->pixel_type != EXR_PIXEL_FLOAT) ||
             e->x_sampling != 1 || e->y_sampling != 1)
@@ -438,14 +448,21 @@ static mcrt_status read_part(exr_context_t ctx, struct exr_job *job, const char 
     /* The data window is the pixel rectangle stored; it becomes our image whatever its origin. */
     if ((long)dw.max.x - dw.min.x + 1 > INT32_MAX / (3 * (long)sizeof(float)))
         return mc_fail(d, MCRT_ERR_IO, "the image is too wide");
-    st = mc_image_alloc(im, (long)dw.max.x - dw.min.x + 1, (long)dw.max.y - dw.min.y + 1, d);
-    if (st != MCRT_OK)
-        return st;
-    rv = decode_pixels(ctx, &dw, idx, 3, EXR_PIXEL_FLOAT, im->rgb, (size_t)im->width, &corrupt);
-    if (rv == EXR_ERR_SUCCESS && !corrupt)
-        return MCRT_OK;
-    mc_image_free(im);
-    return corrupt ? mc_fail(d, MCRT_ERR_IO, "corrupt scanline chunk") : fail(job, rv, d);
+    for (i = 0; i < n && st == MCRT_OK; i++)
+        st = mc_image_alloc(&ims[i], (long)dw.max.x - dw.min.x + 1, (long)dw.max.y - dw.min.y + 1,
+                            d);
+    for (k = 0; k < 3 * n && st == MCRT_OK; k++)
+        to[k] = (uint8_t *)(ims[k / 3].rgb + k % 3);
+    if (st == MCRT_OK) {
+        rv = decode_pixels(ctx, &dw, idx, 3 * n, EXR_PIXEL_FLOAT, to, 3, (size_t)ims[0].width,
+                           &corrupt);
+        if (rv == EXR_ERR_SUCCESS && !corrupt)
+            return MCRT_OK;
+        st = corrupt ? mc_fail(d, MCRT_ERR_IO, "corrupt scanline chunk") : fail(job, rv, d);
+    }
+    for (i = 0; i < n; i++)
+        mc_image_free(&ims[i]);
+    return st;
 }
 
 /* Begin job on f and open it for reading into *ctx (to exr_finish, then end, whatever this
@@ -460,13 +477,18 @@ static exr_result_t start_read(FILE *f, struct exr_job *job, exr_context_t *ctx)
     return exr_start_read(ctx, "image", &init);
 }
 
-mcrt_status mc_exr_read_layer(FILE *f, const char *layer, struct image *im, mc_diag *d)
+mcrt_status mc_exr_read_layers(FILE *f, const char *const *layers, int n, struct image *ims,
+                               mc_diag *d)
 {
     struct exr_job job;
     exr_context_t ctx = NULL;
-    exr_result_t rv = start_read(f, &job, &ctx);
-    mcrt_status st =
-        rv == EXR_ERR_SUCCESS ? read_part(ctx, &job, layer, im, d) : fail(&job, rv, d);
+    exr_result_t rv;
+    mcrt_status st;
+    if (n < 1 || n > MC_IMAGE_MAX_LAYERS)
+        return mc_fail(d, MCRT_ERR_INVALID, "cannot read %d layers at once (1 to %d)", n,
+                       MC_IMAGE_MAX_LAYERS);
+    rv = start_read(f, &job, &ctx);
+    st = rv == EXR_ERR_SUCCESS ? read_part(ctx, &job, layers, n, ims, d) : fail(&job, rv, d);
     exr_finish(&ctx);
     end();
     return st;
@@ -482,7 +504,8 @@ static mcrt_status read_words(exr_context_t ctx, struct exr_job *job, struct ima
     const char *str;
     int32_t len;
     exr_result_t rv;
-    int idx[99], i, k, corrupt = 0;
+    int idx[MAX_CHANNELS], i, k, corrupt = 0;
+    uint8_t *to[MAX_CHANNELS];
     long width, height;
     mcrt_status st;
 
@@ -525,7 +548,9 @@ static mcrt_status read_words(exr_context_t ctx, struct exr_job *job, struct ima
     }
     memcpy(*text, str, (size_t)len);
     (*text)[len] = '\0';
-    rv = decode_pixels(ctx, &dw, idx, words->per_pixel, EXR_PIXEL_UINT, words->data,
+    for (k = 0; k < words->per_pixel; k++)
+        to[k] = (uint8_t *)(words->data + k);
+    rv = decode_pixels(ctx, &dw, idx, words->per_pixel, EXR_PIXEL_UINT, to, words->per_pixel,
                        (size_t)width, &corrupt);
     if (rv == EXR_ERR_SUCCESS && !corrupt) {
         *w = (int)width;
@@ -554,7 +579,7 @@ mcrt_status mc_exr_read_words(FILE *f, struct image_words *words, char **text, i
 
 static mcrt_status exr_read(FILE *f, struct image *im, mc_diag *d)
 {
-    return mc_exr_read_layer(f, NULL, im, d);
+    return mc_exr_read_layers(f, NULL, 1, im, d);
 }
 
 const struct image_format mc_exr_format = {"exr", "OpenEXR", "libopenexr-dev", exr_write, exr_read};
@@ -577,9 +602,10 @@ mcrt_status mc_exr_read_words(FILE *f, struct image_words *words, char **text, i
     return mc_fail(d, MCRT_ERR_UNSUPPORTED, "built without OpenEXR");
 }
 
-mcrt_status mc_exr_read_layer(FILE *f, const char *layer, struct image *im, mc_diag *d)
+mcrt_status mc_exr_read_layers(FILE *f, const char *const *layers, int n, struct image *ims,
+                               mc_diag *d)
 {
-    (void)f, (void)layer, (void)im;
+    (void)f, (void)layers, (void)n, (void)ims;
     return mc_fail(d, MCRT_ERR_UNSUPPORTED, "built without OpenEXR");
 }
 

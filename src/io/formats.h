@@ -29,12 +29,14 @@ extern const struct image_format mc_png_format; /* png.c: 8-bit sRGB via libpng 
 extern const struct image_format mc_exr_format; /* exr.c: float RGB via OpenEXRCore */
 extern const struct image_format mc_pfm_format; /* pfm.c: portable float map, always built */
 
-/* exr.c, behind mc_image_write_layers and mc_image_read_layer: several RGB layers in one EXR part
- * (unnamed: R, G, B; named: NAME.R, NAME.G, NAME.B), and reading one layer (NULL: the first RGB
- * one, as mc_exr_format's read). MCRT_ERR_UNSUPPORTED when built without OpenEXR. */
+/* exr.c, behind mc_image_write_layers and mc_image_read_layers: several RGB layers in one EXR part
+ * (unnamed: R, G, B; named: NAME.R, NAME.G, NAME.B), and reading n of them in one pass (layers
+ * NULL: n = 1, the first RGB one, as mc_exr_format's read). MCRT_ERR_UNSUPPORTED when built
+ * without OpenEXR. */
 mcrt_status mc_exr_write_layers(FILE *f, const struct image_layer *layers, int n,
                                 const struct image_words *words, int w, int h, mc_diag *d);
-mcrt_status mc_exr_read_layer(FILE *f, const char *layer, struct image *im, mc_diag *d);
+mcrt_status mc_exr_read_layers(FILE *f, const char *const *layers, int n, struct image *ims,
+                               mc_diag *d);
 /* Behind mc_image_read_words. */
 mcrt_status mc_exr_read_words(FILE *f, struct image_words *words, char **text, int *w, int *h,
                               mc_diag *d);

@@ -154,24 +154,52 @@ mcrt_status mc_image_read_layer(const char *path, const char *layer, struct imag
     FILE *f;
     mcrt_status st;
 
+    if (layer)
+        return mc_image_read_layers(path, &layer, 1, im, d);
     if (!path || !im)
         return mc_fail(d, MCRT_ERR_INVALID, "cannot read an image: no %s", path ? "image" : "path");
     im->width = im->height = 0;
     im->rgb = NULL;
     if ((st = lookup(path, "read", &fmt, d)) != MCRT_OK)
         return st;
-    if (layer && fmt != &mc_exr_format)
-        return mc_fail(d, MCRT_ERR_UNSUPPORTED,
-                       "cannot read layer '%s' of '%s': only EXR images have layers", layer, path);
     f = fopen(path, "rb");
     if (!f)
         return mc_fail(d, MCRT_ERR_IO, "cannot read '%s': %s", path, strerror(errno));
-    st = layer ? mc_exr_read_layer(f, layer, &got, d) : fmt->read(f, &got, d);
+    st = fmt->read(f, &got, d);
     fclose(f);
     if (st != MCRT_OK)
         return explain(d, st, "read", path);
     *im = got;
     return MCRT_OK;
+}
+
+mcrt_status mc_image_read_layers(const char *path, const char *const *layers, int n,
+                                 struct image *ims, mc_diag *d)
+{
+    const struct image_format *fmt;
+    FILE *f;
+    mcrt_status st;
+    int i;
+
+    if (!path || !ims || !layers || n < 1)
+        return mc_fail(d, MCRT_ERR_INVALID, "cannot read an image: no %s",
+                       path ? "layers" : "path");
+    for (i = 0; i < n; i++) {
+        ims[i].width = ims[i].height = 0;
+        ims[i].rgb = NULL;
+    }
+    if ((st = lookup(path, "read", &fmt, d)) != MCRT_OK)
+        return st;
+    if (fmt != &mc_exr_format)
+        return mc_fail(d, MCRT_ERR_UNSUPPORTED,
+                       "cannot read layer '%s' of '%s': only EXR images have layers", layers[0],
+                       path);
+    f = fopen(path, "rb");
+    if (!f)
+        return mc_fail(d, MCRT_ERR_IO, "cannot read '%s': %s", path, strerror(errno));
+    st = mc_exr_read_layers(f, layers, n, ims, d);
+    fclose(f);
+    return st != MCRT_OK ? explain(d, st, "read", path) : MCRT_OK;
 }
 
 void mc_image_free(struct image *im)

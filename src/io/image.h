@@ -51,5 +51,11 @@ int mc_image_layered(const char *path);
 /* Read the named layer (NULL: as mc_image_read). Only EXR files have named layers. */
 mcrt_status mc_image_read_layer(const char *path, const char *layer, struct image *im,
                                 mc_diag *d);
+/* Read n named layers of an EXR into ims[0..n-1] (freed again on failure), decompressing the
+ * file once: n reads of one layer each decompress all of it (the denoiser's 11 layers of a 512²
+ * render took 1.3 s that way). */
+enum { MC_IMAGE_MAX_LAYERS = 33 };
+mcrt_status mc_image_read_layers(const char *path, const char *const *layers, int n,
+                                 struct image *ims, mc_diag *d);
 
 #endif
