@@ -7,7 +7,8 @@
 #   make check      the tests under AddressSanitizer + UndefinedBehaviorSanitizer (build-san/)
 #   make tsan       a multi-threaded render of every scene under ThreadSanitizer (build-tsan/)
 #   make fuzz       libFuzzer (clang) on the scene parser and the OBJ and MTL readers, FUZZ_TIME s each (build-fuzz/)
-#   make bench      BVH, path-tracer and photon-mapping throughput, mcrt-mpi's speed-up (not a test)
+#   make bench      BVH, path-tracer and photon-mapping throughput, mcrt-mpi's speed-up, and the
+#                   efficiency against Mitsuba 3 (make bench-mitsuba alone; not a test)
 #   make bench-error every sampler's error estimate against the truth on every scene, and the
 #                   predicted time to an error against the time taken (minutes; not a test)
 #   make crosscheck every exportable scene rendered by mcrt and Mitsuba 3, compared within their
@@ -81,7 +82,7 @@ UNIT_BIN := $(UNIT_SRC:tests/unit/%.c=$(O)/tests/%) $(BVH_VARIANTS:%=$(O)/tests/
 TOOL_SRC := $(wildcard tests/tools/*.c)
 TOOL_BIN := $(TOOL_SRC:tests/tools/%.c=$(O)/tests/%)
 
-.PHONY: all run test test-build check tsan fuzz bench crosscheck bench-error bench-denoise denoise-figures install uninstall clean setup ref plots
+.PHONY: all run test test-build check tsan fuzz bench bench-mitsuba crosscheck bench-error bench-denoise denoise-figures install uninstall clean setup ref plots
 all: $(O)/mcrt $(O)/libmcrt.a $(if $(HAVE_MPI),$(O)/mcrt-mpi)
 
 # $(O)/config.mk, the CONFIG above, is written while this Makefile is read, and only when its text
@@ -207,10 +208,11 @@ test-build: all $(UNIT_BIN) $(TOOL_BIN)
 ref: all $(O)/tests/exr_average
 	@O=$(O) sh tests/tools/pov_ref.sh
 
-# Every scene of scenes/ and tests/crosscheck/ that `mcrt mitsuba` exports, rendered by mcrt and by
-# Mitsuba 3 and compared within both renders' noise (needs `pip install mitsuba`; never part of make
-# test). SPP, RENDERS, SHRINK, CASES=...: see tests/tools/crosscheck.sh.
-crosscheck: all
+# Every scene of scenes/, tests/crosscheck/ and bench-mitsuba's generated ones that `mcrt mitsuba`
+# exports, rendered by mcrt and by Mitsuba 3 and compared within both renders' noise (needs
+# `pip install mitsuba`; never part of make test). SPP, RENDERS, SHRINK, CASES=...: see tests/tools/crosscheck.sh.
+crosscheck: all $(O)/tests/bench_scenes
+	@mkdir -p $(O)/bench/scenes && $(O)/tests/bench_scenes $(O)/bench/scenes
 	@O=$(O) sh tests/tools/crosscheck.sh
 
 check:
@@ -261,7 +263,18 @@ bench: all $(O)/tests/bench $(O)/tests/bench_render $(O)/tests/bench_sppm $(O)/t
 	$(O)/tests/bench_render
 	$(O)/tests/bench_sppm
 	MCRT=$(O)/mcrt sh tests/tools/mpi_bench.sh
-	@if command -v python3 >/dev/null 2>&1; then python3 tests/tools/mitsuba_bench.py $(O)/mcrt --cache $(O)/bench; \
+	@$(MAKE) --no-print-directory bench-mitsuba
+
+# The efficiency against Mitsuba 3 (issue 19) on four scenes: the Cornell box, scenes/glossy-floor
+# (a small light beside a sky) and two that tests/tools/bench_scenes.c writes into $(O)/bench/scenes,
+# too large for scenes/: 10,000 emitting triangles, and a 1,000,000-triangle terrain. Its
+# references (1024 spp each, minutes) are kept in $(O)/bench.
+BENCH_SCENES = scenes/cornell.mcrt scenes/glossy-floor.mcrt $(O)/bench/scenes/many-lights.mcrt \
+               $(O)/bench/scenes/terrain.mcrt
+bench-mitsuba: all $(O)/tests/bench_scenes
+	@mkdir -p $(O)/bench/scenes && $(O)/tests/bench_scenes $(O)/bench/scenes
+	@if command -v python3 >/dev/null 2>&1; then \
+	  python3 tests/tools/mitsuba_bench.py $(O)/mcrt --cache $(O)/bench $(BENCH_SCENES:%=--scene %); \
 	else echo "mitsuba_bench: no python3, so no efficiency ratio against Mitsuba 3 (then: pip install mitsuba)"; fi
 
 # Estimated over true relMSE for every sampler at 16, 64 and 256 spp on every scene, and the

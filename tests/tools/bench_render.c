@@ -22,6 +22,7 @@
 
 #include "mcrt.h"
 #include "median.h"
+#include "terrain.h"
 
 /* A static pinhole scene of diffuse surfaces under point lights: the specialised path draws no
  * lens or time samples, queries no motion BVH and does no MIS. FLOOR_MATERIAL is the floor's
@@ -83,30 +84,13 @@ static int render_once(mcrt_scene *s, int all_features, int threads, int spp, do
     return 1;
 }
 
-/* A 1,000,000-triangle scene: a terrain of 1000 x 500 quads, z = 0.05 sin(40x) sin(40y) over
- * [-1,1] x [-0.5,0.5] (the anchor's sphere-1M displacement, on a plane so that no triangle is
- * degenerate), under a point light, as an OBJ file in dir. Returns the scene text, or NULL. */
+/* A 1,000,000-triangle scene: the terrain of terrain.h under a point light, as an OBJ file in dir.
+ * Returns the scene text, or NULL. */
 static char *terrain_scene(const char *dir, char *obj, size_t objsize)
 {
-    enum { NX = 1000, NY = 500 };
     static char text[512];
-    FILE *f;
-    int i, j;
     snprintf(obj, objsize, "%s/terrain-1M.obj", dir);
-    f = fopen(obj, "w");
-    if (!f)
-        return NULL;
-    for (j = 0; j <= NY; j++)
-        for (i = 0; i <= NX; i++) {
-            double x = -1.0 + 2.0 * i / NX, y = -0.5 + 1.0 * j / NY;
-            fprintf(f, "v %.7g %.7g %.7g\n", x, 0.05 * sin(40.0 * x) * sin(40.0 * y), y);
-        }
-    for (j = 0; j < NY; j++)
-        for (i = 0; i < NX; i++) {
-            int a = j * (NX + 1) + i + 1, b = a + 1, c = a + NX + 2, d = a + NX + 1;
-            fprintf(f, "f %d %d %d\nf %d %d %d\n", a, c, b, a, d, c);
-        }
-    if (fclose(f) != 0)
+    if (!terrain_obj(obj))
         return NULL;
     snprintf(text, sizeof text,
              "film { width 256 height 256 spp 4 }\n"
