@@ -27,6 +27,17 @@
  * inputs): {0.5, 2} lowered the true relMSE of all eight renders against {0.5, 1}, by 3-23%
  * ({0.5, 1.5}, {0.5, 3} and {0.5, 4} did about as well, {0.25, 2} worse on the Cornell box). */
 static const float reg_k[2] = {0.5f, 2.0f};
+/* The colour variance the regression's weights divide by is the half's (A − B)²/2 averaged over
+ * (2·REG_VAR_R + 1)² pixels, the patch's 7×7 and a pixel around it, rather than the 3×3 of the
+ * prefilter and the maps: a firefly's one-degree-of-freedom variance, spread over 3×3 only, made
+ * its neighbours' patches match anything, so that the regression spread it and the error
+ * estimate, which takes the weights as independent of the other half, missed it. Measured by
+ * make bench-denoise (the same inputs; radius 1 -> 4): cornell-spheres 16 spp relMSE 1.53e-2 ->
+ * 9.5e-3, 64 spp 3.08e-3 -> 2.88e-3, est/true 0.48 -> 0.83 and 0.27 -> 0.57; cornell 16 spp
+ * 7.69e-4 -> 7.58e-4, 64 spp 1.69e-4 -> 1.65e-4. Radii 2-3 and 6-9 did worse on cornell-spheres
+ * at 16 spp (1.1-1.5e-2), 5 about as well; one variance for the whole image (each channel's
+ * mean) did about as well here, but cannot follow a scene's brightness. */
+#define REG_VAR_R (REG_F + 1)
 
 /* NL-means distances (Rousselle, Manzi and Zwicker 2012, eq. 3): the patch distance, with the
  * variances' share taken off, over the variances; clamped so exp() stays finite (and a NaN
@@ -722,20 +733,28 @@ static mcrt_status regress(struct pool *pl, const struct guide *g, const float *
 
 static float sq(float x) { return x * x; }
 
-/* The 3×3 box mean of v (nc channels): variance estimates of one degree of freedom each made
- * steadier for the weights (the error estimates use the unsmoothed ones, which are unbiased). */
-static void box3(const float *v, int nc, int width, int height, float *out)
+/* The (2r + 1)² box mean of v (nc channels), the image's edge pixels repeated, through tmp (as
+ * large as v): variance estimates of one degree of freedom each made steadier for the weights
+ * (the error estimates use the unsmoothed ones, which are unbiased). */
+static void box_mean(const float *v, int nc, int width, int height, int r, float *tmp, float *out)
 {
-    int x, y, c, i, k;
+    int x, y, c, i;
+    float norm = 1.0f / (float)((2 * r + 1) * (2 * r + 1));
     for (y = 0; y < height; y++)
         for (x = 0; x < width; x++)
             for (c = 0; c < nc; c++) {
                 float s = 0.0f;
-                for (i = -1; i <= 1; i++)
-                    for (k = -1; k <= 1; k++)
-                        s += v[((size_t)clampi(y + i, 0, height - 1) * width
-                                + (size_t)clampi(x + k, 0, width - 1)) * nc + c];
-                out[((size_t)y * width + x) * nc + c] = s / 9.0f;
+                for (i = -r; i <= r; i++)
+                    s += v[((size_t)y * width + (size_t)clampi(x + i, 0, width - 1)) * nc + c];
+                tmp[((size_t)y * width + x) * nc + c] = s;
+            }
+    for (y = 0; y < height; y++)
+        for (x = 0; x < width; x++)
+            for (c = 0; c < nc; c++) {
+                float s = 0.0f;
+                for (i = -r; i <= r; i++)
+                    s += tmp[((size_t)clampi(y + i, 0, height - 1) * width + x) * nc + c];
+                out[((size_t)y * width + x) * nc + c] = s * norm;
             }
 }
 
@@ -757,7 +776,7 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
     const float *A = in->color[0], *B = in->color[1];
     const float *const *E = in->emission;
     /* One block of floats: 3-channel images, then feature planes. */
-    enum { VAR, VARS, MEAN, CAND, MSE0 = CAND + 4, MSE1, TMP, SEL, CA, CB, NIMG };
+    enum { VAR, VARS, VARG, MEAN, CAND, MSE0 = CAND + 4, MSE1, TMP, SEL, CA, CB, NIMG };
     /* Then the padded guides (pad_copy), 3 channels each: the halves, the variance of a half and
      * of the mean, the mean. */
     enum { PA, PB, PVAR, PVARM, PMEAN, NPAD };
@@ -804,7 +823,8 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
         img[VAR][i] = 0.5f * sq(A[i] - B[i]);
         img[MEAN][i] = 0.5f * (A[i] + B[i]);
     }
-    box3(img[VAR], 3, w, h, img[VARS]);
+    box_mean(img[VAR], 3, w, h, 1, img[TMP], img[VARS]);
+    box_mean(img[VAR], 3, w, h, REG_VAR_R, img[TMP], img[VARG]);
     pad_copy(A, 3, w, h, 1.0f, pad[PA]);
     pad_copy(B, 3, w, h, 1.0f, pad[PB]);
 
@@ -825,7 +845,7 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
                 fb[i * nf + f] = in->feature[1][f][i];
                 fvar[i] = 0.5f * sq(in->feature[0][f][i] - in->feature[1][f][i]);
             }
-            box3(fvar, 1, w, h, fvars);
+            box_mean(fvar, 1, w, h, 1, img[TMP], fvars);
             for (i = 0; i < n; i++)
                 fv[i * nf + f] = fvars[i];
         }
@@ -851,7 +871,7 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
 
     /* 2. Each half regressed on the other half's features with the other half's weights, for
      * two bandwidths; 3. their errors. */
-    pad_copy(img[VARS], 3, w, h, 1.0f, pad[PVAR]);
+    pad_copy(img[VARG], 3, w, h, 1.0f, pad[PVAR]);
     pad_copy(img[VARS], 3, w, h, 0.5f, pad[PVARM]);
     pad_copy(img[MEAN], 3, w, h, 1.0f, pad[PMEAN]);
     g.gc = 3;
