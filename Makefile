@@ -78,7 +78,9 @@ LIB_OBJ  := $(LIB_SRC:%.c=$(O)/obj/%.o)
 CLI_OBJ  := $(CLI_SRC:%.c=$(O)/obj/%.o)
 UNIT_SRC := $(wildcard tests/unit/test_*.c)
 BVH_VARIANTS := portable sse # test_bvh_VARIANT: see the rules below
-UNIT_BIN := $(UNIT_SRC:tests/unit/%.c=$(O)/tests/%) $(BVH_VARIANTS:%=$(O)/tests/test_bvh_%)
+NFOR_VARIANTS := sse # test_denoise_VARIANT
+UNIT_BIN := $(UNIT_SRC:tests/unit/%.c=$(O)/tests/%) $(BVH_VARIANTS:%=$(O)/tests/test_bvh_%) \
+            $(NFOR_VARIANTS:%=$(O)/tests/test_denoise_%)
 TOOL_SRC := $(wildcard tests/tools/*.c)
 TOOL_BIN := $(TOOL_SRC:tests/tools/%.c=$(O)/tests/%)
 
@@ -163,6 +165,19 @@ $(BVH_VARIANTS:%=$(O)/tests/test_bvh_%): $(O)/tests/test_bvh_%: tests/unit/test_
 	@mkdir -p $(@D)
 	@$(if $(Q),echo "  CC      $< ($* BVH)")
 	$(Q)$(CC) $(CFLAGS) -Itests -o $@ $< $(O)/obj/bvh_$*.o $(O)/libmcrt.a $(LDLIBS)
+
+# The denoiser's tests again with its SSE2 copy, which AVX2 machines pass over at run time; they
+# also write the result, which tests/denoise.sh compares with the AVX2 copy's (the same bits).
+NFOR_VARIANT_FLAGS_sse = -DMCRT_NFOR_NO_AVX
+$(NFOR_VARIANTS:%=$(O)/obj/nfor_%.o): $(O)/obj/nfor_%.o: src/denoise/nfor.c $(CONFIG_MK)
+	@mkdir -p $(@D)
+	@$(if $(Q),echo "  CC      $< ($*)")
+	$(Q)$(CC) $(CFLAGS) $(NFOR_VARIANT_FLAGS_$*) -c $< -o $@
+
+$(NFOR_VARIANTS:%=$(O)/tests/test_denoise_%): $(O)/tests/test_denoise_%: tests/unit/test_denoise.c tests/t.h $(O)/obj/nfor_%.o $(O)/libmcrt.a $(CONFIG_MK)
+	@mkdir -p $(@D)
+	@$(if $(Q),echo "  CC      $< ($* denoiser)")
+	$(Q)$(CC) $(CFLAGS) -Itests -o $@ $< $(O)/obj/nfor_$*.o $(O)/libmcrt.a $(LDLIBS)
 
 $(O)/tests/%: tests/tools/%.c $(O)/libmcrt.a $(CONFIG_MK)
 	@mkdir -p $(@D)
@@ -325,4 +340,4 @@ clean:
 	rm -rf $(O) build-san build-tsan build-fuzz
 
 -include $(LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d)
--include $(BVH_VARIANTS:%=$(O)/obj/bvh_%.d)
+-include $(BVH_VARIANTS:%=$(O)/obj/bvh_%.d) $(NFOR_VARIANTS:%=$(O)/obj/nfor_%.d)

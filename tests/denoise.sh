@@ -11,7 +11,8 @@
 #     (E[(D - R)^2] = Var(R) + MSE(D) - 2 Cov when D tends to the truth; 2 leaves room for
 #     MSE(D) up to the raw's own error and for the estimate's own spread).
 #   - 1 and 2 threads give the same file; `mcrt denoise` of the render's EXR gives the render's
-#     denoised image exactly.
+#     denoised image exactly; the denoiser's SSE2 copy (test_denoise_sse) gives the same bits as
+#     the one this processor runs (AVX2 where it has it) on test_denoise's flat image.
 #   - Bad input to `mcrt denoise`: a PNG, an EXR without the layers, a missing file, a non-EXR
 #     output, no -o: exit status 2 with a message, and an existing output left as it was.
 . tests/harness.sh.inc
@@ -109,6 +110,12 @@ if cmp -s "$tmp/t1.exr" "$tmp/t2.exr"; then
     ok "1 and 2 threads: the same denoised EXR"
 else
     fail "threads" "1 and 2 threads gave different denoised EXRs"
+fi
+if "$O/tests/test_denoise" "$tmp/simd.bin" >/dev/null && "$O/tests/test_denoise_sse" "$tmp/sse.bin" >/dev/null \
+    && cmp -s "$tmp/simd.bin" "$tmp/sse.bin"; then
+    ok "the denoiser's SSE2 and run-time copies: the same bits"
+else
+    fail "simd" "test_denoise and test_denoise_sse failed or denoised differently"
 fi
 if "$MCRT" denoise --quiet --threads 2 "$tmp/t1.exr" -o "$tmp/again.exr" \
     && [ "$(field MSE "$tmp/again.exr" "$tmp/t1.exr")" = 0 ]; then

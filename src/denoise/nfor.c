@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "core/alloc.h"
+#include "core/simd.h"
 #include "render/render.h"
 
 /* NFOR's parameters (Bitterli et al. 2016, §5; Tungsten's defaults): patch radius F, window
@@ -74,18 +75,35 @@ struct pool {
 
 /* The hot loops (patch distances, weights, the regression's dot products) are plain C that GCC
  * vectorises for SSE2, the x86-64 baseline; on a processor with AVX2 the tile functions run as
- * copies compiled for it (GCC's target attribute, chosen by __builtin_cpu_supports, as
- * geom/bvh.c does), twice as wide. No FMA is enabled and C99 forbids contracting a·b + c, and
- * the vectoriser never reorders a sum: both copies compute the same operations in the same
- * order, so the image is the same bits on either. MCRT_NFOR_NO_AVX keeps to the SSE2 copy. */
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(__AVX2__) && !defined(MCRT_NFOR_NO_AVX)
+ * copies compiled for it (core/simd.h's dispatch, as geom/bvh.c does), twice as wide. No FMA
+ * is enabled and C99 forbids contracting a·b + c, and the vectoriser never reorders a sum: both
+ * copies compute the same operations in the same order, so the image is the same bits on
+ * either. MCRT_NFOR_NO_AVX keeps to the SSE2 copy. */
+#if defined(MC_AVX2_DISPATCH) && !defined(MCRT_NFOR_NO_AVX)
 #define NFOR_AVX_DISPATCH 1
-#define AVX2_TARGET __attribute__((target("avx2")))
 #endif
-#if defined(__GNUC__)
-#define ALWAYS_INLINE inline __attribute__((always_inline))
+
+/* A tile function NAME(ctx, w, x0, y0, x1, y1) that runs BODY, with its AVX2 copy NAME_avx2
+ * under the dispatch; TILE_FN(NAME) is the one this processor runs. */
+#ifdef NFOR_AVX_DISPATCH
+#define TILE_FUNCTIONS(name, body)                                                             \
+    static void name(void *ctx, struct tile_worker *w, int x0, int y0, int x1, int y1)         \
+    {                                                                                          \
+        body(ctx, w, x0, y0, x1, y1);                                                          \
+    }                                                                                          \
+    static MC_AVX2_TARGET void name##_avx2(void *ctx, struct tile_worker *w, int x0, int y0,   \
+                                           int x1, int y1)                                     \
+    {                                                                                          \
+        body(ctx, w, x0, y0, x1, y1);                                                          \
+    }
+#define TILE_FN(name) (mc_cpu_has_avx2() ? name##_avx2 : name)
 #else
-#define ALWAYS_INLINE inline
+#define TILE_FUNCTIONS(name, body)                                                             \
+    static void name(void *ctx, struct tile_worker *w, int x0, int y0, int x1, int y1)         \
+    {                                                                                          \
+        body(ctx, w, x0, y0, x1, y1);                                                          \
+    }
+#define TILE_FN(name) name
 #endif
 
 static int clampi(int v, int lo, int hi) { return v < lo ? lo : v > hi ? hi : v; }
@@ -109,7 +127,7 @@ static void pad_copy(const float *src, int nc, int width, int height, float scal
  * error below 1e-6, measured against exp() over [0, 14]), 2^-k built in the float's exponent
  * bits; 0 from k = 20 on (v > 13.5). Plain arithmetic that vectorises, and the same bits on
  * every machine, which libm's expf (a per-processor variant) does not promise. */
-static ALWAYS_INLINE void exp_neg(float *v, int n)
+static MC_ALWAYS_INLINE void exp_neg(float *v, int n)
 {
     int i;
     for (i = 0; i < n; i++) {
@@ -126,7 +144,7 @@ static ALWAYS_INLINE void exp_neg(float *v, int n)
 
 /* Box sums: out[j] = Σ_{i < taps} in[j + i·step] for j < n, tap by tap from 0 (the order the
  * bits depend on), LANES of them at a time held in registers. */
-static ALWAYS_INLINE void box_sum_taps(const float *in, size_t step, int taps, int n, float *out)
+static MC_ALWAYS_INLINE void box_sum_taps(const float *in, size_t step, int taps, int n, float *out)
 {
     int j = 0, i, l;
     for (; j + LANES <= n; j += LANES) {
@@ -147,7 +165,7 @@ static ALWAYS_INLINE void box_sum_taps(const float *in, size_t step, int taps, i
 }
 
 /* box_sum_taps, its taps unrolled for the patch sizes used. */
-static ALWAYS_INLINE void box_sum(const float *in, size_t step, int taps, int n, float *out)
+static MC_ALWAYS_INLINE void box_sum(const float *in, size_t step, int taps, int n, float *out)
 {
     if (taps == 2 * PRE_F + 1)
         box_sum_taps(in, step, 2 * PRE_F + 1, n, out);
@@ -159,7 +177,7 @@ static ALWAYS_INLINE void box_sum(const float *in, size_t step, int taps, int n,
 
 /* out[x] = the largest of 0 and the gc channels of pixel x of row, x < n (all finite, patch_dist's
  * distances). */
-static ALWAYS_INLINE void channel_max_n(const float *row, int gc, int n, float *out)
+static MC_ALWAYS_INLINE void channel_max_n(const float *row, int gc, int n, float *out)
 {
     int x, c;
     for (x = 0; x < n; x++)
@@ -170,7 +188,7 @@ static ALWAYS_INLINE void channel_max_n(const float *row, int gc, int n, float *
 }
 
 /* channel_max_n, unrolled for colour guides. */
-static ALWAYS_INLINE void channel_max(const float *row, int gc, int n, float *out)
+static MC_ALWAYS_INLINE void channel_max(const float *row, int gc, int n, float *out)
 {
     if (gc == 3)
         channel_max_n(row, 3, n, out);
@@ -184,7 +202,7 @@ static ALWAYS_INLINE void channel_max(const float *row, int gc, int n, float *ou
  * scratch_floats(g, x1 - x0) floats.
  * Pixels outside the image read the padded guide's copies of its border. Each loop runs along
  * rows of contiguous floats (a row's pixels and their channels), so that it vectorises. */
-static ALWAYS_INLINE void patch_dist(const struct guide *g, int width, int x0, int y0, int x1, int y1,
+static MC_ALWAYS_INLINE void patch_dist(const struct guide *g, int width, int x0, int y0, int x1, int y1,
                        int dx, int dy, float *wt, float *scratch)
 {
     int f = g->f, gc = g->gc, tw = x1 - x0, th = y1 - y0, ph = th + 2 * f;
@@ -221,7 +239,7 @@ static ALWAYS_INLINE void patch_dist(const struct guide *g, int width, int x0, i
 }
 
 /* The weights of the distances patch_dist gave for the offset (0, 0) or not (centre), in place. */
-static ALWAYS_INLINE void weights(float *wt, int n, int centre)
+static MC_ALWAYS_INLINE void weights(float *wt, int n, int centre)
 {
     int i;
     exp_neg(wt, n);
@@ -262,7 +280,7 @@ struct nlm_job {
     float *dst;
 };
 
-static ALWAYS_INLINE void nlm_tile_body(void *ctx, struct tile_worker *w, int x0, int y0, int x1,
+static MC_ALWAYS_INLINE void nlm_tile_body(void *ctx, struct tile_worker *w, int x0, int y0, int x1,
                                         int y1)
 {
     struct nlm_job *j = ctx;
@@ -323,28 +341,17 @@ static ALWAYS_INLINE void nlm_tile_body(void *ctx, struct tile_worker *w, int x0
  * tile's rows are long (the result is the same for any tiling: a pixel's sums over the offsets
  * are taken in the same order). */
 enum { NLM_W = 128 };
-static ALWAYS_INLINE void nlm_band_body(void *ctx, struct tile_worker *w, int y0, int y1)
+static MC_ALWAYS_INLINE void nlm_band_body(void *ctx, struct tile_worker *w, int x0, int y0,
+                                           int x1, int y1)
 {
     struct nlm_job *j = ctx;
     int x;
+    (void)x0;
+    (void)x1;
     for (x = 0; x < j->pl->width; x += NLM_W)
         nlm_tile_body(ctx, w, x, y0, x + NLM_W < j->pl->width ? x + NLM_W : j->pl->width, y1);
 }
-static void nlm_band(void *ctx, struct tile_worker *w, int x0, int y0, int x1, int y1)
-{
-    (void)x0;
-    (void)x1;
-    nlm_band_body(ctx, w, y0, y1);
-}
-#ifdef NFOR_AVX_DISPATCH
-static AVX2_TARGET void nlm_band_avx2(void *ctx, struct tile_worker *w, int x0, int y0, int x1,
-                                      int y1)
-{
-    (void)x0;
-    (void)x1;
-    nlm_band_body(ctx, w, y0, y1);
-}
-#endif
+TILE_FUNCTIONS(nlm_band, nlm_band_body)
 
 /* src: sc interleaved channels, dst the same. */
 static mcrt_status nlm(struct pool *pl, const struct guide *g, const float *src, int sc, int r,
@@ -366,12 +373,7 @@ static mcrt_status nlm(struct pool *pl, const struct guide *g, const float *src,
     j.sc = sc;
     j.r = r;
     j.dst = dst;
-#ifdef NFOR_AVX_DISPATCH
-    if (__builtin_cpu_supports("avx2"))
-        st = run(pl, 1, nlm_band_avx2, &j, d);
-    else
-#endif
-        st = run(pl, 1, nlm_band, &j, d);
+    st = run(pl, 1, TILE_FN(nlm_band), &j, d);
     free(planes);
     return st;
 }
@@ -425,7 +427,7 @@ enum { SIDE = 2 * REG_R + 1, NW = SIDE * SIDE, NWP = (NW + LANES - 1) / LANES * 
  * AVX2's 16): each spelt out, as GCC keeps an array indexed by a loop in memory, and called with
  * a constant nb, which inlining folds. */
 enum { DOT_BLOCK = 4 };
-static ALWAYS_INLINE void dots(const float *a0, const float *a1, const float *const *col, int nb,
+static MC_ALWAYS_INLINE void dots(const float *a0, const float *a1, const float *const *col, int nb,
                                double out[2][DOT_BLOCK])
 {
     const float *c0 = col[0], *c1 = col[nb > 1], *c2 = col[nb > 2 ? 2 : 0];
@@ -490,7 +492,7 @@ static void window_init(struct window *v)
 /* Pixel (x, y)'s window (stride: a padded row), its distances dist (NWP of them, from
  * patch_dist with k = 1) turned into each bandwidth's weights, 0 outside the image: row by row
  * of the window, each a run of contiguous floats of the padded planes. */
-static ALWAYS_INLINE void window_fill(const struct reg_job *j, int x, int y, const float *dist,
+static MC_ALWAYS_INLINE void window_fill(const struct reg_job *j, int x, int y, const float *dist,
                                       struct window *v)
 {
     const int R = REG_R, width = j->pl->width, height = j->pl->height;
@@ -530,7 +532,7 @@ static ALWAYS_INLINE void window_fill(const struct reg_job *j, int x, int y, con
 /* The weighted least squares of the window v for both bandwidths: X^T W X into M[k] (nd × nd)
  * and X^T W Y into B[k] (nd × 3), for solve. Row a of both at once: its weighted column against
  * the columns a..nd-1 and the colours, DOT_BLOCK at a time. */
-static ALWAYS_INLINE void normal_equations(struct window *v, int nd, double M[2][MAX_DIM * MAX_DIM],
+static MC_ALWAYS_INLINE void normal_equations(struct window *v, int nd, double M[2][MAX_DIM * MAX_DIM],
                                            double B[2][MAX_DIM * 3])
 {
     const float *col[MAX_DIM + 3];
@@ -567,7 +569,7 @@ static ALWAYS_INLINE void normal_equations(struct window *v, int nd, double M[2]
 /* Each bandwidth's local fit, coefficients beta[k] (nd × 3), evaluated over the window into
  * v->fit; the sums over the columns in column order, the six of a LANES-wide run spelt out so
  * that they stay in registers. */
-static ALWAYS_INLINE void fit_eval(struct window *v, int nd, float beta[2][MAX_DIM * 3])
+static MC_ALWAYS_INLINE void fit_eval(struct window *v, int nd, float beta[2][MAX_DIM * 3])
 {
     int o, a, l;
     for (o = 0; o < NWP; o += LANES) {
@@ -594,7 +596,7 @@ static ALWAYS_INLINE void fit_eval(struct window *v, int nd, float beta[2][MAX_D
     }
 }
 
-static ALWAYS_INLINE void reg_tile_body(void *ctx, struct tile_worker *w, int x0, int y0, int x1,
+static MC_ALWAYS_INLINE void reg_tile_body(void *ctx, struct tile_worker *w, int x0, int y0, int x1,
                                         int y1)
 {
     struct reg_job *j = ctx;
@@ -656,17 +658,7 @@ static ALWAYS_INLINE void reg_tile_body(void *ctx, struct tile_worker *w, int x0
     j->acc[ti] = acc;
 }
 
-static void reg_tile(void *ctx, struct tile_worker *w, int x0, int y0, int x1, int y1)
-{
-    reg_tile_body(ctx, w, x0, y0, x1, y1);
-}
-#ifdef NFOR_AVX_DISPATCH
-static AVX2_TARGET void reg_tile_avx2(void *ctx, struct tile_worker *w, int x0, int y0, int x1,
-                                      int y1)
-{
-    reg_tile_body(ctx, w, x0, y0, x1, y1);
-}
-#endif
+TILE_FUNCTIONS(reg_tile, reg_tile_body)
 
 /* The colour img (padded) regressed on the features feat (padded) with weights from guide g
  * (k = 1), for both bandwidths: out[0] for reg_k[0], out[1] for reg_k[1]. */
@@ -690,12 +682,7 @@ static mcrt_status regress(struct pool *pl, const struct guide *g, const float *
         free(sum);
         return mc_fail(d, MCRT_ERR_NOMEM, "out of memory for the denoiser");
     }
-#ifdef NFOR_AVX_DISPATCH
-    if (__builtin_cpu_supports("avx2"))
-        st = run(pl, 0, reg_tile_avx2, &j, d);
-    else
-#endif
-        st = run(pl, 0, reg_tile, &j, d);
+    st = run(pl, 0, TILE_FN(reg_tile), &j, d);
     /* The tiles' overlapping sums, in tile order whatever the threads' order was. */
     for (ty = 0; ty < nty; ty++)
         for (tx = 0; tx < pl->ntx; tx++) {

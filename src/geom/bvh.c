@@ -5,6 +5,7 @@
 
 #include <string.h>
 
+#include "core/simd.h"
 #include "geom/bvh_node.h"
 #include "geom/motion.h"
 #include "geom/tri4.h"
@@ -23,21 +24,12 @@
 #include <immintrin.h>
 #define BVH_AVX 1
 #define AVX_TARGET
-#elif defined(__GNUC__) && defined(__x86_64__)
+#elif defined(MC_AVX2_DISPATCH)
 #include <immintrin.h>
 #define BVH_AVX 1
 #define BVH_AVX_DISPATCH 1
-#define AVX_TARGET __attribute__((target("avx2")))
+#define AVX_TARGET MC_AVX2_TARGET
 #endif
-#endif
-
-/* Left to itself, GCC -O2 keeps one out-of-line traverse() (it is large) with any_hit a run-time
- * argument, and calls the 4-wide triangle test; forced inlining makes any_hit and the node and
- * leaf tests constants of each caller's copy. */
-#if defined(__GNUC__)
-#define ALWAYS_INLINE inline __attribute__((always_inline))
-#else
-#define ALWAYS_INLINE inline
 #endif
 
 /* 1 + 4·2^-23: covers the 1 + 2γ3 relative error of the slab distances (Ize, "Robust BVH Ray
@@ -148,7 +140,7 @@ static inline unsigned node_test(const struct bvh_node *n, const struct slab_ray
 /* One axis of the portable node test, as node_test8's slab8: constant axes, and a loop over the
  * children that compilers can turn into SIMD code (GCC -O2 does, for t0 and t1 the node test's
  * own arrays, which it can see do not alias the node). */
-static ALWAYS_INLINE void slab1(const struct bvh_node *n, const struct slab_ray *s, int a,
+static MC_ALWAYS_INLINE void slab1(const struct bvh_node *n, const struct slab_ray *s, int a,
                                 float *t0, float *t1)
 {
     const float *near = n->b[s->near[a]], *far = n->b[s->far[a]], o = s->o[a], inv = s->inv[a];
@@ -160,7 +152,7 @@ static ALWAYS_INLINE void slab1(const struct bvh_node *n, const struct slab_ray 
     }
 }
 
-static ALWAYS_INLINE unsigned node_test(const struct bvh_node *n, const struct slab_ray *s,
+static MC_ALWAYS_INLINE unsigned node_test(const struct bvh_node *n, const struct slab_ray *s,
                                         float tmax, float *tn)
 {
     float t0[BVH_WIDTH], t1[BVH_WIDTH];
@@ -287,7 +279,7 @@ struct tri4_result {
  * survives every rejection and would reach the scalar degenerate() check is a triangle that
  * tri4.c found not degenerate, so the check would pass. */
 #ifdef BVH_SSE
-static ALWAYS_INLINE void tri4_test(const struct tri4 *k, const struct tri_ray *r,
+static MC_ALWAYS_INLINE void tri4_test(const struct tri4 *k, const struct tri_ray *r,
                                     float tmax, unsigned live, struct tri4_result *out)
 {
     const __m128 zero = _mm_setzero_ps();
@@ -371,7 +363,7 @@ static ALWAYS_INLINE void tri4_test(const struct tri4 *k, const struct tri_ray *
     }
 }
 #else
-static ALWAYS_INLINE void tri4_test(const struct tri4 *k, const struct tri_ray *r,
+static MC_ALWAYS_INLINE void tri4_test(const struct tri4 *k, const struct tri_ray *r,
                                     float tmax, unsigned live, struct tri4_result *out)
 {
     const float o[3] = {r->q.r.o.x, r->q.r.o.y, r->q.r.o.z};
@@ -424,7 +416,7 @@ static ALWAYS_INLINE void tri4_test(const struct tri4 *k, const struct tri_ray *
  * `first` (tri4.h) is tested a block at a time, lanes in primitive order, so that of equal
  * distances the first primitive wins, as in a loop over the primitives. Returns whether h was
  * updated (h->prim too); with any_hit, stops at the first hit. */
-static ALWAYS_INLINE int leaf_static(void *ctx, const struct bvh *b, const struct prim *prims,
+static MC_ALWAYS_INLINE int leaf_static(void *ctx, const struct bvh *b, const struct prim *prims,
                                      uint32_t first, uint32_t count, struct hit *h, int any_hit)
 {
     struct tri_ray *r = ctx;
@@ -479,7 +471,7 @@ struct moving_ray {
 
 /* leaf_static's contract for moving primitives: ctx is the moving_ray. Only the blocks' primitive
  * indices are used: the leaf is prims[base .. base + count), base its first block's first. */
-static ALWAYS_INLINE int leaf_moving(void *ctx, const struct bvh *b, const struct prim *prims,
+static MC_ALWAYS_INLINE int leaf_moving(void *ctx, const struct bvh *b, const struct prim *prims,
                                      uint32_t first, uint32_t count, struct hit *h, int any_hit)
 {
     struct moving_ray *m = ctx;
@@ -575,7 +567,7 @@ static inline void sort2(item *a, item *b)
  * current nearest distance live in locals (not behind pointers that the primitive tests could
  * alias), so that they stay in registers. Rays with a non-finite or zero direction, or a
  * non-finite origin, hit nothing. */
-static ALWAYS_INLINE int traverse(const struct bvh *b, const struct prim *prims,
+static MC_ALWAYS_INLINE int traverse(const struct bvh *b, const struct prim *prims,
                                   const struct ray *r, struct hit *out, int any_hit,
                                   node_prep_fn prep, node_test_fn node, leaf_test leaf,
                                   void *ctx)
@@ -686,7 +678,7 @@ static ALWAYS_INLINE int traverse(const struct bvh *b, const struct prim *prims,
 
 /* Static queries: traversal specialised for the node test, any_hit and the leaf test; h is
  * written only on a hit. */
-static ALWAYS_INLINE int query_static(const struct bvh *b, const struct prim *prims,
+static MC_ALWAYS_INLINE int query_static(const struct bvh *b, const struct prim *prims,
                                       const struct ray *r, struct hit *h, int any_hit,
                                       node_prep_fn prep, node_test_fn node)
 {
@@ -706,21 +698,15 @@ static ALWAYS_INLINE int query_static(const struct bvh *b, const struct prim *pr
 
 /* The queries for each instruction set, each its own function: with the dispatch, the public
  * functions below are then a test and a jump, with no stack frame of their own. */
-#if defined(__GNUC__)
-#define NOINLINE __attribute__((noinline))
-#else
-#define NOINLINE
-#endif
-
 #ifdef BVH_AVX
 /* The traversal compiled for AVX2 (the SSE code in it, inlined, is VEX-encoded). */
-static NOINLINE AVX_TARGET int intersect_simd(const struct bvh *b, const struct prim *prims,
+static MC_NOINLINE AVX_TARGET int intersect_simd(const struct bvh *b, const struct prim *prims,
                                               const struct ray *r, struct hit *h)
 {
     return query_static(b, prims, r, h, 0, node_prep8, node_test8);
 }
 
-static NOINLINE AVX_TARGET int occluded_simd(const struct bvh *b, const struct prim *prims,
+static MC_NOINLINE AVX_TARGET int occluded_simd(const struct bvh *b, const struct prim *prims,
                                              const struct ray *r)
 {
     return query_static(b, prims, r, NULL, 1, node_prep8, node_test8);
@@ -729,13 +715,13 @@ static NOINLINE AVX_TARGET int occluded_simd(const struct bvh *b, const struct p
 
 #if !defined(BVH_AVX) || defined(BVH_AVX_DISPATCH)
 /* SSE, or the portable C99 code. */
-static NOINLINE int intersect_plain(const struct bvh *b, const struct prim *prims,
+static MC_NOINLINE int intersect_plain(const struct bvh *b, const struct prim *prims,
                                     const struct ray *r, struct hit *h)
 {
     return query_static(b, prims, r, h, 0, node_prep, node_test);
 }
 
-static NOINLINE int occluded_plain(const struct bvh *b, const struct prim *prims,
+static MC_NOINLINE int occluded_plain(const struct bvh *b, const struct prim *prims,
                                    const struct ray *r)
 {
     return query_static(b, prims, r, NULL, 1, node_prep, node_test);
@@ -746,7 +732,7 @@ int mc_bvh_intersect(const struct bvh *b, const struct prim *prims, const struct
                      struct hit *h)
 {
 #if defined(BVH_AVX_DISPATCH)
-    if (__builtin_cpu_supports("avx2"))
+    if (mc_cpu_has_avx2())
         return intersect_simd(b, prims, r, h);
     return intersect_plain(b, prims, r, h);
 #elif defined(BVH_AVX)
@@ -759,7 +745,7 @@ int mc_bvh_intersect(const struct bvh *b, const struct prim *prims, const struct
 int mc_bvh_occluded(const struct bvh *b, const struct prim *prims, const struct ray *r)
 {
 #if defined(BVH_AVX_DISPATCH)
-    if (__builtin_cpu_supports("avx2"))
+    if (mc_cpu_has_avx2())
         return occluded_simd(b, prims, r);
     return occluded_plain(b, prims, r);
 #elif defined(BVH_AVX)

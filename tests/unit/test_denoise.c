@@ -3,7 +3,10 @@
  * of standard deviation SIGMA, with noise-free or noisy features. Checks: a flat image stays flat
  * and keeps its mean, a step edge and a one-pixel bright line keep their contrast, the estimated
  * error is within a factor 2 of the true one, and the result is the same for 1, 2 and 3 threads.
- * Each tolerance is derived from the noise, next to its check. */
+ * Each tolerance is derived from the noise, next to its check. With an argument FILE it also
+ * writes the flat case's result there, so that tests/denoise.sh can compare the bits of the SSE2
+ * copy (test_denoise_sse) and the AVX2 one. */
+#include <stdio.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -81,7 +84,7 @@ static double relmse(const struct bufs *b, int est)
     return s / (N * 3);
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
     static struct bufs b, c;
     static float f0[N];
@@ -107,6 +110,13 @@ int main(void)
     sum = sqrt(sum2 / (N * 3) - (sum / (N * 3)) * (sum / (N * 3)));
     T_NOTE("flat: denoised std %.4g against the raw %.4g", sum, SIGMA / sqrt(2.0));
     T_CHECK(sum < SIGMA / sqrt(2.0) / 3.0, "flat: std %.4g", sum);
+
+    if (argc > 1) {
+        FILE *f = fopen(argv[1], "wb");
+        T_CHECK(f && fwrite(b.rgb, sizeof b.rgb, 1, f) == 1 && fwrite(b.mse, sizeof b.mse, 1, f) == 1
+                    && fclose(f) == 0,
+                "writing %s", argv[1]);
+    }
 
     /* 1, 2 and 3 threads: bit for bit the same. */
     memcpy(&c, &b, sizeof c);

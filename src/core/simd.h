@@ -1,0 +1,26 @@
+/* simd.h: what the hand-vectorised modules (geom/bvh.c, denoise/nfor.c) share: forced inlining
+ * and its opposite, and copies of a function compiled for AVX2, chosen at run time on a processor
+ * that has it (GCC's and Clang's target attribute and __builtin_cpu_supports, x86-64 only). A
+ * build already compiled for AVX2 (-mavx2, -march=native) needs no dispatch: MC_AVX2_DISPATCH is
+ * then unset. */
+#ifndef MC_CORE_SIMD_H
+#define MC_CORE_SIMD_H
+
+/* GCC -O2 keeps large static functions out of line, with their flags as run-time arguments;
+ * forced inlining makes them constants of each caller's copy. MC_NOINLINE keeps a function that
+ * is a dispatch target its own, so that the caller is a test and a jump. */
+#if defined(__GNUC__)
+#define MC_ALWAYS_INLINE inline __attribute__((always_inline))
+#define MC_NOINLINE __attribute__((noinline))
+#else
+#define MC_ALWAYS_INLINE inline
+#define MC_NOINLINE
+#endif
+
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__AVX2__)
+#define MC_AVX2_DISPATCH 1
+#define MC_AVX2_TARGET __attribute__((target("avx2")))
+#define mc_cpu_has_avx2() __builtin_cpu_supports("avx2")
+#endif
+
+#endif
