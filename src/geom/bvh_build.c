@@ -121,12 +121,6 @@ static inline f4 f4_sub(f4 a, f4 b) { return _mm_sub_ps(a, b); }
 static inline f4 f4_mul(f4 a, f4 b) { return _mm_mul_ps(a, b); }
 static inline f4 f4_min(f4 a, f4 b) { return _mm_min_ps(a, b); }
 static inline f4 f4_max(f4 a, f4 b) { return _mm_max_ps(a, b); }
-/* cond ? a : b, for cond 0 or 1 */
-static inline f4 f4_select(int cond, f4 a, f4 b)
-{
-    __m128 m = _mm_castsi128_ps(_mm_set1_epi32(-cond));
-    return _mm_or_ps(_mm_and_ps(m, a), _mm_andnot_ps(m, b));
-}
 /* Lanes 0..2 truncated to int, into out[0..2]; each must be in int range (out[3] gets lane 3,
  * which may be anything). */
 static inline void f4_trunc(f4 a, int32_t *out)
@@ -177,7 +171,6 @@ F4_LANES(f4_mul, a.v[i] * b.v[i])
 F4_LANES(f4_min, min2(a.v[i], b.v[i]))
 F4_LANES(f4_max, max2(a.v[i], b.v[i]))
 #undef F4_LANES
-static inline f4 f4_select(int cond, f4 a, f4 b) { return cond ? a : b; }
 static inline void f4_trunc(f4 a, int32_t *out)
 {
     out[0] = (int32_t)a.v[0];
@@ -201,12 +194,12 @@ static inline float f4_half_area(f4 lo, f4 hi)
                                                          : 0.0f;
 }
 
-/* The bin of the centroid lo + hi of a ref's bounds on each axis, into bin[0..2]: bin_of for three
+/* The bin of a ref's (doubled) centroid c = lo + hi on each axis, into bin[0..2]: bin_of for three
  * axes at once. clo is the centroid box's lower corner, scale bin_scale per axis, top nbins - 1 in
  * every lane. */
-static inline void bins_of(f4 lo, f4 hi, f4 clo, f4 scale, f4 top, int32_t *bin)
+static inline void bins_of(f4 c, f4 clo, f4 scale, f4 top, int32_t *bin)
 {
-    f4 f = f4_mul(f4_sub(f4_add(lo, hi), clo), scale);
+    f4 f = f4_mul(f4_sub(c, clo), scale);
     /* min(f, top) is f < top ? f : top: the top edge and NaN go to the last bin, as in bin_of. */
     f4_trunc(f4_min(f, top), bin);
 }
@@ -223,6 +216,7 @@ struct split {
     int axis, bin;          /* refs whose centroid falls in bins < bin go left */
     float cost;             /* area-weighted block counts: A_l·B(N_l) + A_r·B(N_r) (half areas) */
     struct box left, right; /* bounds of the two sides */
+    struct box lc, rc;      /* and of their (doubled) centroids */
 };
 
 /* Bins for a node of n primitives: BINS, but no more than n for small nodes, where the fixed
@@ -248,9 +242,12 @@ static float bin_scale(const struct box *cbox, int axis, int nbins)
     return ext > 0.0f ? (float)nbins * 0.99999f / ext : 0.0f;
 }
 
-/* Bin boxes and counts per axis. */
+/* Bin boxes, counts and the bounds of the bins' (doubled) centroids per axis. The centroid bounds
+ * give the children's centroid boxes, which the partition would otherwise compute primitive by
+ * primitive, through selects, for both sides (a third of its operations). */
 struct bins {
     f4 lo[3][BINS], hi[3][BINS];
+    f4 clo[3][BINS], chi[3][BINS];
     uint32_t cnt[3][BINS];
 };
 
@@ -266,8 +263,8 @@ static void bins_clear(struct bins *b, int nbins)
     int axis, i;
     for (axis = 0; axis < 3; axis++)
         for (i = 0; i < nbins; i++) {
-            b->lo[axis][i] = lo;
-            b->hi[axis][i] = hi;
+            b->lo[axis][i] = b->clo[axis][i] = lo;
+            b->hi[axis][i] = b->chi[axis][i] = hi;
             b->cnt[axis][i] = 0;
         }
 }
@@ -279,19 +276,25 @@ static void bin_refs(struct bins *b, const struct binning *bn, const struct ref 
     uint32_t k;
     for (k = begin; k < end; k++) {
         const struct ref *r = &refs[k];
-        f4 lo = f4_load3(r->lo), hi = f4_load(r->hi);
+        f4 lo = f4_load3(r->lo), hi = f4_load(r->hi), c = f4_add(lo, hi);
         int32_t i[4];
-        bins_of(lo, hi, bn->lo, bn->scale, bn->top, i);
+        bins_of(c, bn->lo, bn->scale, bn->top, i);
         /* Written out per axis: -O2 does not unroll the loop, whose index arithmetic then costs
          * as much as the update. */
         b->lo[0][i[0]] = f4_min(b->lo[0][i[0]], lo);
         b->hi[0][i[0]] = f4_max(b->hi[0][i[0]], hi);
+        b->clo[0][i[0]] = f4_min(b->clo[0][i[0]], c);
+        b->chi[0][i[0]] = f4_max(b->chi[0][i[0]], c);
         b->cnt[0][i[0]]++;
         b->lo[1][i[1]] = f4_min(b->lo[1][i[1]], lo);
         b->hi[1][i[1]] = f4_max(b->hi[1][i[1]], hi);
+        b->clo[1][i[1]] = f4_min(b->clo[1][i[1]], c);
+        b->chi[1][i[1]] = f4_max(b->chi[1][i[1]], c);
         b->cnt[1][i[1]]++;
         b->lo[2][i[2]] = f4_min(b->lo[2][i[2]], lo);
         b->hi[2][i[2]] = f4_max(b->hi[2][i[2]], hi);
+        b->clo[2][i[2]] = f4_min(b->clo[2][i[2]], c);
+        b->chi[2][i[2]] = f4_max(b->chi[2][i[2]], c);
         b->cnt[2][i[2]]++;
     }
 }
@@ -303,6 +306,8 @@ static void bins_merge(struct bins *into, const struct bins *b, int nbins)
         for (i = 0; i < nbins; i++) {
             into->lo[axis][i] = f4_min(into->lo[axis][i], b->lo[axis][i]);
             into->hi[axis][i] = f4_max(into->hi[axis][i], b->hi[axis][i]);
+            into->clo[axis][i] = f4_min(into->clo[axis][i], b->clo[axis][i]);
+            into->chi[axis][i] = f4_max(into->chi[axis][i], b->chi[axis][i]);
             into->cnt[axis][i] += b->cnt[axis][i];
         }
 }
@@ -453,51 +458,48 @@ static int find_split(const struct ref *refs, const struct task *t, int threads,
     }
     if (found) {
         f4 llo = empty_lo, lhi = empty_hi, rlo = empty_lo, rhi = empty_hi;
+        f4 lclo = empty_lo, lchi = empty_hi, rclo = empty_lo, rchi = empty_hi;
+        const int a = best->axis;
         for (i = 0; i < best->bin; i++) {
-            llo = f4_min(llo, bins.lo[best->axis][i]);
-            lhi = f4_max(lhi, bins.hi[best->axis][i]);
+            llo = f4_min(llo, bins.lo[a][i]);
+            lhi = f4_max(lhi, bins.hi[a][i]);
+            lclo = f4_min(lclo, bins.clo[a][i]);
+            lchi = f4_max(lchi, bins.chi[a][i]);
         }
         for (; i < nbins; i++) {
-            rlo = f4_min(rlo, bins.lo[best->axis][i]);
-            rhi = f4_max(rhi, bins.hi[best->axis][i]);
+            rlo = f4_min(rlo, bins.lo[a][i]);
+            rhi = f4_max(rhi, bins.hi[a][i]);
+            rclo = f4_min(rclo, bins.clo[a][i]);
+            rchi = f4_max(rchi, bins.chi[a][i]);
         }
         f4_store3(best->left.lo, llo);
         f4_store3(best->left.hi, lhi);
         f4_store3(best->right.lo, rlo);
         f4_store3(best->right.hi, rhi);
+        f4_store3(best->lc.lo, lclo);
+        f4_store3(best->lc.hi, lchi);
+        f4_store3(best->rc.lo, rclo);
+        f4_store3(best->rc.hi, rchi);
     }
     return found;
 }
 
-/* Partition refs by the split; returns the first index of the right side and fills the
- * children's centroid bounds. Branch-free (Lomuto's scheme with an unconditional swap): which side
- * a primitive goes to is a coin flip the branch predictor cannot learn, and a mispredicted branch
- * per primitive cost more than the swap. */
-static uint32_t partition(struct ref *refs, const struct task *t, const struct split *s,
-                          struct box *lc, struct box *rc)
+/* Partition refs by the split; returns the first index of the right side (the sides' centroid
+ * boxes come from the bins: split.lc, split.rc). Branch-free (Lomuto's scheme with an
+ * unconditional swap): which side a primitive goes to is a coin flip the branch predictor cannot
+ * learn, and a mispredicted branch per primitive cost more than the swap. */
+static uint32_t partition(struct ref *refs, const struct task *t, const struct split *s)
 {
     int nbins = bin_count(t), axis = s->axis;
     float lo = t->cbox.lo[axis], scale = bin_scale(&t->cbox, axis, nbins);
     uint32_t i, j = t->begin;
-    f4 inf = f4_set(INFINITY, INFINITY, INFINITY), ninf = f4_set(-INFINITY, -INFINITY, -INFINITY);
-    f4 llo = inf, lhi = ninf, rlo = inf, rhi = ninf;
     for (i = t->begin; i < t->end; i++) {
         struct ref r = refs[i];
-        f4 c = f4_add(f4_load3(r.lo), f4_load(r.hi));
         int left = bin_of(r.lo[axis] + r.hi[axis], lo, scale, nbins) < s->bin;
-        /* Both sides' centroid bounds grow, one of them by an empty box: no branch. */
-        llo = f4_min(llo, f4_select(left, c, inf));
-        lhi = f4_max(lhi, f4_select(left, c, ninf));
-        rlo = f4_min(rlo, f4_select(left, inf, c));
-        rhi = f4_max(rhi, f4_select(left, ninf, c));
         refs[i] = refs[j];
         refs[j] = r;
         j += (uint32_t)left;
     }
-    f4_store3(lc->lo, llo);
-    f4_store3(lc->hi, lhi);
-    f4_store3(rc->lo, rlo);
-    f4_store3(rc->hi, rhi);
     return j;
 }
 
@@ -616,7 +618,6 @@ static size_t build_nodes(struct bnode *nodes, struct ref *refs, const struct ta
         struct bnode *node = &nodes[t.node];
         uint32_t size = t.end - t.begin, mid, c = (uint32_t)count;
         struct split s;
-        struct box lc, rc;
         int split_found = 0, leaf = size <= LEAF_MAX;
 
         if (size <= defer && !leaf) {
@@ -646,12 +647,12 @@ static size_t build_nodes(struct bnode *nodes, struct ref *refs, const struct ta
             continue;
         }
         if (split_found) {
-            mid = partition(refs, &t, &s, &lc, &rc);
+            mid = partition(refs, &t, &s);
         } else {
             /* Coinciding centroids, or too deep: halve the range as it stands. */
             mid = t.begin + size / 2;
-            range_bounds(refs, t.begin, mid, &s.left, &lc);
-            range_bounds(refs, mid, t.end, &s.right, &rc);
+            range_bounds(refs, t.begin, mid, &s.left, &s.lc);
+            range_bounds(refs, mid, t.end, &s.right, &s.rc);
         }
         node->index = c;
         node->count = 0;
@@ -661,14 +662,14 @@ static size_t build_nodes(struct bnode *nodes, struct ref *refs, const struct ta
         stack[sp].node = c + 1;
         stack[sp].depth = t.depth + 1;
         stack[sp].box = s.right;
-        stack[sp].cbox = rc;
+        stack[sp].cbox = s.rc;
         sp++;
         stack[sp].begin = t.begin;
         stack[sp].end = mid;
         stack[sp].node = c;
         stack[sp].depth = t.depth + 1;
         stack[sp].box = s.left;
-        stack[sp].cbox = lc;
+        stack[sp].cbox = s.lc;
         sp++;
     }
     return count;
