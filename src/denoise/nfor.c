@@ -196,14 +196,31 @@ static MC_ALWAYS_INLINE void channel_max(const float *row, int gc, int n, float 
         channel_max_n(row, gc, n, out);
 }
 
+/* Which rows of a tile patch_dist computes: out[y] for the tile's row y, and in[y] for the row
+ * y - f of the patches around it, set when a computed row's patch reaches it. */
+struct row_mask {
+    unsigned char out[MC_TILE], in[MC_TILE + 2 * PAD];
+};
+
+/* m->in from m->out, for a tile th rows high and patches of radius f. */
+static void row_mask_reach(struct row_mask *m, int th, int f)
+{
+    int y, i;
+    memset(m->in, 0, sizeof m->in);
+    for (y = 0; y < th; y++)
+        for (i = 0; m->out[y] && i <= 2 * f; i++)
+            m->in[y + i] = 1;
+}
+
 /* The NL-means patch distances of pixel p = (x, y) against p + (dx, dy), for every p of the tile
  * [x0, x1) × [y0, y1), into wt (row-major, tile-sized): the largest over the channels, for the
- * least similar channel decides (Tungsten takes the minimum weight). scratch holds
- * scratch_floats(g, x1 - x0) floats.
+ * least similar channel decides (Tungsten takes the minimum weight); only the rows of the tile
+ * that rows marks, or all when rows is NULL (the others' rows of wt are left as they were).
+ * scratch holds scratch_floats(g, x1 - x0) floats.
  * Pixels outside the image read the padded guide's copies of its border. Each loop runs along
  * rows of contiguous floats (a row's pixels and their channels), so that it vectorises. */
 static MC_ALWAYS_INLINE void patch_dist(const struct guide *g, int width, int x0, int y0, int x1, int y1,
-                       int dx, int dy, float *wt, float *scratch)
+                       const struct row_mask *rows, int dx, int dy, float *wt, float *scratch)
 {
     int f = g->f, gc = g->gc, tw = x1 - x0, th = y1 - y0, ph = th + 2 * f;
     int rw = (tw + 2 * f) * gc, tr = tw * gc, x, y, c, i, j;
@@ -215,7 +232,7 @@ static MC_ALWAYS_INLINE void patch_dist(const struct guide *g, int width, int x0
         size_t p = (size_t)(y0 - f + y + PAD) * stride + (size_t)(x0 - f + PAD) * gc;
         const float *ip = g->img + p, *iq = ip + off, *vpp = g->var + p, *vqp = vpp + off;
         float *dr = dist + (size_t)y * rw;
-        for (i = 0; i < rw; i++) {
+        for (i = 0; (!rows || rows->in[y]) && i < rw; i++) {
             float vp = vpp[i], vq = vqp[i], diff = ip[i] - iq[i];
             float dd = (diff * diff - (vp + (vp < vq ? vp : vq))) / (DIST_EPS + kk * (vp + vq));
             dr[i] = dd < DIST_CLAMP ? dd : DIST_CLAMP;
@@ -223,8 +240,11 @@ static MC_ALWAYS_INLINE void patch_dist(const struct guide *g, int width, int x0
     }
     /* The box filter over the patch, separably: rows into tmp, then columns. */
     for (y = 0; y < ph; y++)
-        box_sum(dist + (size_t)y * rw, (size_t)gc, 2 * f + 1, tr, tmp + (size_t)y * tr);
+        if (!rows || rows->in[y])
+            box_sum(dist + (size_t)y * rw, (size_t)gc, 2 * f + 1, tr, tmp + (size_t)y * tr);
     for (y = 0; y < th; y++) {
+        if (rows && !rows->out[y])
+            continue;
         box_sum(tmp + (size_t)y * tr, (size_t)tr, 2 * f + 1, tr, col);
         for (j = 0; j < tr; j++)
             col[j] *= norm;
@@ -302,7 +322,7 @@ static MC_ALWAYS_INLINE void nlm_tile_body(void *ctx, struct tile_worker *w, int
             /* The tile's pixels whose neighbour p + (dx, dy) is inside the image. */
             int xa = x0 + dx < 0 ? -dx : x0, xb = x1 + dx > width ? width - dx : x1;
             int ya = y0 + dy < 0 ? -dy : y0, yb = y1 + dy > height ? height - dy : y1;
-            patch_dist(j->g, width, x0, y0, x1, y1, dx, dy, wt, wt + np * (size_t)wc);
+            patch_dist(j->g, width, x0, y0, x1, y1, NULL, dx, dy, wt, wt + np * (size_t)wc);
             weights(wt, (int)np * wc, dx == 0 && dy == 0);
             for (y = ya; y < yb; y++) {
                 size_t l = (size_t)(y - y0) * tw + (size_t)(xa - x0);
@@ -467,8 +487,29 @@ struct reg_job {
     const float *img;          /* the colour regressed, padded (3 channels) */
     const float *const *feat;  /* nf planes, padded */
     int nf;
-    float **acc;               /* per tile: per bandwidth 4 planes (R, G, B, weight) of (T + 2R)² */
+    const unsigned char *need; /* NULL: the lattice's pass; else the pixels of the second */
+    float **acc;               /* per tile: per bandwidth 4 planes (R, G, B, weight) of (T + 2R)²,
+                                  NULL for a tile without a fit */
 };
+
+/* Every pixel's fit is evaluated over its whole window and the fits that cover a pixel are
+ * averaged (collaborative filtering), so the fits of neighbouring pixels, whose windows nearly
+ * coincide, say nearly the same there: fitting only the pixels of a lattice of spacing LATTICE
+ * (both coordinates multiples of it) gives each pixel the fits of the lattice points within its window,
+ * about (2R + 1)²/4 of them, at a quarter of the cost. A pixel whose lattice fits weigh little
+ * where it is (a firefly, an edge's thin side: the weights follow the colour's patches) gets its
+ * own fit in a second pass, as every pixel has in the full method: those whose weight summed
+ * over the fits covering it is below COVER_MIN for either bandwidth (a fit's own pixel has
+ * weight 1). Measured by make bench-denoise and callgrind: see the README's denoiser section. */
+enum { LATTICE = 2 };
+#define COVER_MIN 3.0
+
+/* Whether pixel (x, y) is fitted in this pass. */
+static int fitted(const struct reg_job *j, int x, int y)
+{
+    return j->need ? j->need[(size_t)y * (size_t)j->pl->width + (size_t)x]
+                   : x % LATTICE == 0 && y % LATTICE == 0;
+}
 
 /* One pixel's window, column by column (the columns of the design matrix: 1, the offset, and each
  * feature's difference from the pixel's own, so that the fit is centred on it), the colours and,
@@ -602,13 +643,27 @@ static MC_ALWAYS_INLINE void reg_tile_body(void *ctx, struct tile_worker *w, int
     struct reg_job *j = ctx;
     const int R = REG_R, nd = 3 + j->nf;
     int width = j->pl->width, tw = x1 - x0, th = y1 - y0;
-    int aw = tw + 2 * R, dx, dy, x, y, c, a, o, k;
+    int aw = tw + 2 * R, dx, dy, x, y, c, a, o, k, i, nfit = 0;
     size_t np = (size_t)tw * th, l, npl = (size_t)aw * (size_t)(th + 2 * R);
-    float *dist = mc_malloc((np * NWP + np + scratch_floats(j->g, MC_TILE)) * sizeof *dist);
-    float *acc = mc_calloc(8 * npl, sizeof *acc);
-    struct window *v = mc_malloc(sizeof *v);
     size_t ti = (size_t)(y0 / MC_TILE) * (size_t)j->pl->ntx + (size_t)(x0 / MC_TILE);
+    struct row_mask rows;
+    int fit[MC_TILE * MC_TILE]; /* the fitted pixels, tile-local indices in row-major order */
+    float *dist, *acc;
+    struct window *v;
     (void)w;
+    memset(rows.out, 0, sizeof rows.out);
+    for (y = y0; y < y1; y++)
+        for (x = x0; x < x1; x++)
+            if (fitted(j, x, y)) {
+                fit[nfit++] = (y - y0) * tw + (x - x0);
+                rows.out[y - y0] = 1;
+            }
+    if (nfit == 0)
+        return;
+    row_mask_reach(&rows, th, j->g->f);
+    dist = mc_malloc((np * NWP + np + scratch_floats(j->g, MC_TILE)) * sizeof *dist);
+    acc = mc_calloc(8 * npl, sizeof *acc);
+    v = mc_malloc(sizeof *v);
     if (!dist || !acc || !v) {
         j->pl->status = MCRT_ERR_NOMEM;
         free(dist);
@@ -617,42 +672,44 @@ static MC_ALWAYS_INLINE void reg_tile_body(void *ctx, struct tile_worker *w, int
         return;
     }
     window_init(v);
-    /* Every offset's distances for the whole tile, then per pixel its window's. */
+    /* Every offset's distances for the tile's rows with fitted pixels, then per fitted pixel
+     * its window's. */
     for (o = 0, dy = -R; dy <= R; dy++)
         for (dx = -R; dx <= R; dx++, o++) {
             float *t = dist + np * NWP;
-            patch_dist(j->g, width, x0, y0, x1, y1, dx, dy, t, t + np);
-            for (l = 0; l < np; l++)
-                dist[l * NWP + (size_t)o] = t[l];
+            patch_dist(j->g, width, x0, y0, x1, y1, &rows, dx, dy, t, t + np);
+            for (i = 0; i < nfit; i++)
+                dist[(size_t)fit[i] * NWP + (size_t)o] = t[fit[i]];
         }
-    for (y = y0; y < y1; y++)
-        for (x = x0; x < x1; x++) {
-            double M[2][MAX_DIM * MAX_DIM], B[2][MAX_DIM * 3];
-            float beta[2][MAX_DIM * 3];
-            l = (size_t)(y - y0) * tw + (size_t)(x - x0);
-            window_fill(j, x, y, dist + l * NWP, v);
-            normal_equations(v, nd, M, B);
-            for (k = 0; k < 2; k++) {
-                solve(M[k], nd, B[k]);
-                for (a = 0; a < nd * 3; a++)
-                    beta[k][a] = (float)B[k][a];
-            }
-            /* The local fit evaluated over the window, weighted by the same weights (the
-             * collaborative step): every pixel is the mean of the fits that cover it. */
-            fit_eval(v, nd, beta);
-            for (k = 0; k < 2; k++) {
-                const float *wk = v->w[k];
-                for (o = 0, dy = -R; dy <= R; dy++, o += SIDE) {
-                    float *t = acc + (size_t)k * 4 * npl + (size_t)(y - y0 + R + dy) * aw
-                               + (size_t)(x - x0);
-                    for (c = 0; c < 3; c++)
-                        for (dx = 0; dx < SIDE; dx++)
-                            t[c * npl + (size_t)dx] += wk[o + dx] * v->fit[k][c][o + dx];
+    for (i = 0; i < nfit; i++) {
+        double M[2][MAX_DIM * MAX_DIM], B[2][MAX_DIM * 3];
+        float beta[2][MAX_DIM * 3];
+        l = (size_t)fit[i];
+        x = x0 + fit[i] % tw;
+        y = y0 + fit[i] / tw;
+        window_fill(j, x, y, dist + l * NWP, v);
+        normal_equations(v, nd, M, B);
+        for (k = 0; k < 2; k++) {
+            solve(M[k], nd, B[k]);
+            for (a = 0; a < nd * 3; a++)
+                beta[k][a] = (float)B[k][a];
+        }
+        /* The local fit evaluated over the window, weighted by the same weights (the
+         * collaborative step): every pixel is the mean of the fits that cover it. */
+        fit_eval(v, nd, beta);
+        for (k = 0; k < 2; k++) {
+            const float *wk = v->w[k];
+            for (o = 0, dy = -R; dy <= R; dy++, o += SIDE) {
+                float *t = acc + (size_t)k * 4 * npl + (size_t)(y - y0 + R + dy) * aw
+                           + (size_t)(x - x0);
+                for (c = 0; c < 3; c++)
                     for (dx = 0; dx < SIDE; dx++)
-                        t[3 * npl + (size_t)dx] += wk[o + dx];
-                }
+                        t[c * npl + (size_t)dx] += wk[o + dx] * v->fit[k][c][o + dx];
+                for (dx = 0; dx < SIDE; dx++)
+                    t[3 * npl + (size_t)dx] += wk[o + dx];
             }
         }
+    }
     free(dist);
     free(v);
     j->acc[ti] = acc;
@@ -660,33 +717,14 @@ static MC_ALWAYS_INLINE void reg_tile_body(void *ctx, struct tile_worker *w, int
 
 TILE_FUNCTIONS(reg_tile, reg_tile_body)
 
-/* The colour img (padded) regressed on the features feat (padded) with weights from guide g
- * (k = 1), for both bandwidths: out[0] for reg_k[0], out[1] for reg_k[1]. */
-static mcrt_status regress(struct pool *pl, const struct guide *g, const float *img,
-                           const float *const *feat, int nf, float *const out[2], mc_diag *d)
+/* The tiles' overlapping sums of j->acc added into sum (per pixel and bandwidth R, G, B,
+ * weight), in tile order whatever the threads' order was, and the tiles' sums freed. */
+static void merge_tiles(const struct pool *pl, float **tiles, double *sum)
 {
     int nty = (pl->height + MC_TILE - 1) / MC_TILE, tx, ty, x, y, c, k;
-    size_t i, n = (size_t)pl->width * (size_t)pl->height;
-    struct reg_job j;
-    mcrt_status st;
-    double *sum;
-    j.pl = pl;
-    j.g = g;
-    j.img = img;
-    j.feat = feat;
-    j.nf = nf;
-    j.acc = mc_calloc((size_t)pl->ntx * (size_t)nty, sizeof *j.acc);
-    sum = mc_calloc(n * 8, sizeof *sum);
-    if (!j.acc || !sum) {
-        free(j.acc);
-        free(sum);
-        return mc_fail(d, MCRT_ERR_NOMEM, "out of memory for the denoiser");
-    }
-    st = run(pl, 0, TILE_FN(reg_tile), &j, d);
-    /* The tiles' overlapping sums, in tile order whatever the threads' order was. */
     for (ty = 0; ty < nty; ty++)
         for (tx = 0; tx < pl->ntx; tx++) {
-            float *acc = j.acc[(size_t)ty * pl->ntx + tx];
+            float *acc = tiles[(size_t)ty * pl->ntx + tx];
             int x0 = tx * MC_TILE - REG_R, y0 = ty * MC_TILE - REG_R;
             int aw = (tx * MC_TILE + MC_TILE > pl->width ? pl->width - tx * MC_TILE : MC_TILE)
                      + 2 * REG_R;
@@ -706,13 +744,53 @@ static mcrt_status regress(struct pool *pl, const struct guide *g, const float *
                                 + c] += acc[((size_t)k * 4 + c) * npl + (size_t)y * aw + x];
                     }
             free(acc);
+            tiles[(size_t)ty * pl->ntx + tx] = NULL;
         }
+}
+
+/* The colour img (padded) regressed on the features feat (padded) with weights from guide g
+ * (k = 1), for both bandwidths: out[0] for reg_k[0], out[1] for reg_k[1]. The lattice's fits,
+ * then those of the pixels they cover too little (LATTICE). */
+static mcrt_status regress(struct pool *pl, const struct guide *g, const float *img,
+                           const float *const *feat, int nf, float *const out[2], mc_diag *d)
+{
+    int nty = (pl->height + MC_TILE - 1) / MC_TILE, c, k;
+    size_t i, n = (size_t)pl->width * (size_t)pl->height;
+    struct reg_job j;
+    mcrt_status st;
+    unsigned char *need = mc_malloc(n);
+    double *sum = mc_calloc(n * 8, sizeof *sum);
+    j.pl = pl;
+    j.g = g;
+    j.img = img;
+    j.feat = feat;
+    j.nf = nf;
+    j.need = NULL;
+    j.acc = mc_calloc((size_t)pl->ntx * (size_t)nty, sizeof *j.acc);
+    if (!j.acc || !sum || !need) {
+        free(j.acc);
+        free(sum);
+        free(need);
+        return mc_fail(d, MCRT_ERR_NOMEM, "out of memory for the denoiser");
+    }
+    st = run(pl, 0, TILE_FN(reg_tile), &j, d);
+    merge_tiles(pl, j.acc, sum);
+    for (i = 0; i < n; i++) {
+        int x = (int)(i % (size_t)pl->width), y = (int)(i / (size_t)pl->width);
+        need[i] = (x % LATTICE != 0 || y % LATTICE != 0)
+                  && (sum[i * 8 + 3] < COVER_MIN || sum[i * 8 + 7] < COVER_MIN);
+    }
+    j.need = need;
+    if (st == MCRT_OK)
+        st = run(pl, 0, TILE_FN(reg_tile), &j, d);
+    merge_tiles(pl, j.acc, sum);
     for (i = 0; i < n; i++)
         for (k = 0; k < 2; k++)
             for (c = 0; c < 3; c++)
                 out[k][i * 3 + c] = (float)(sum[(i * 2 + k) * 4 + c] / sum[(i * 2 + k) * 4 + 3]);
     free(j.acc);
     free(sum);
+    free(need);
     return st;
 }
 

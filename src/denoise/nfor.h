@@ -7,11 +7,12 @@
  *   1. each feature of one half is filtered by NL-means with weights from the other half's
  *      (cross prefiltering, NFOR §5.1), so that the features' own noise is filtered and what
  *      filters A stays independent of A;
- *   2. each half's colour is regressed, in a window around every pixel, as an affine function of
+ *   2. each half's colour is regressed, in a window around a pixel, as an affine function of
  *      the other half's prefiltered features and of screen position, with NL-means weights from
- *      the other half's colour (first-order regression, §5.2), for two bandwidths k; every
- *      pixel's local fit is evaluated over its whole window and the fits averaged by their
- *      weights (collaborative filtering, §5.2);
+ *      the other half's colour (first-order regression, §5.2), for two bandwidths k; each
+ *      local fit is evaluated over its whole window and the fits averaged by their weights
+ *      (collaborative filtering, §5.2). NFOR fits at every pixel; here the pixels of a lattice
+ *      of spacing 2, and then each pixel those fits cover too little (nfor.c, LATTICE);
  *   3. each candidate's error is estimated from the halves (§5.3): Â, filtered from B's guides,
  *      has E[(B − Â)²] ≈ MSE(Â) + Var(B), so that the mean D = (Â + B̂)/2 has
  *          MSE(D) ≈ ½[(B − Â)² − Var(B) + (A − B̂)² − Var(A)] − ¼(Â − B̂)²,
