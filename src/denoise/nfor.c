@@ -175,25 +175,27 @@ static MC_ALWAYS_INLINE void box_sum(const float *in, size_t step, int taps, int
         box_sum_taps(in, step, taps, n, out);
 }
 
-/* out[x] = the largest of 0 and the gc channels of pixel x of row, x < n (all finite, patch_dist's
- * distances). */
-static MC_ALWAYS_INLINE void channel_max_n(const float *row, int gc, int n, float *out)
+/* row[x] = the mean of the gc channels of pixel x of row, in place, x < n: pixel x's channels
+ * are read before row[x] is written, and no later pixel's are at or before it. */
+static MC_ALWAYS_INLINE void channel_mean_n(float *row, int gc, int n)
 {
+    float inv = 1.0f / (float)gc;
     int x, c;
-    for (x = 0; x < n; x++)
-        out[x] = 0.0f;
-    for (c = 0; c < gc; c++)
-        for (x = 0; x < n; x++)
-            out[x] = row[x * gc + c] > out[x] ? row[x * gc + c] : out[x];
+    for (x = 0; x < n; x++) {
+        float s = row[x * gc];
+        for (c = 1; c < gc; c++)
+            s += row[x * gc + c];
+        row[x] = s * inv;
+    }
 }
 
-/* channel_max_n, unrolled for colour guides. */
-static MC_ALWAYS_INLINE void channel_max(const float *row, int gc, int n, float *out)
+/* channel_mean_n, unrolled for colour guides. */
+static MC_ALWAYS_INLINE void channel_mean(float *row, int gc, int n)
 {
     if (gc == 3)
-        channel_max_n(row, 3, n, out);
+        channel_mean_n(row, 3, n);
     else
-        channel_max_n(row, gc, n, out);
+        channel_mean_n(row, gc, n);
 }
 
 /* Which rows of a tile patch_dist computes: out[y] for the tile's row y, and in[y] for the row
@@ -213,17 +215,21 @@ static void row_mask_reach(struct row_mask *m, int th, int f)
 }
 
 /* The NL-means patch distances of pixel p = (x, y) against p + (dx, dy), for every p of the tile
- * [x0, x1) × [y0, y1), into wt (row-major, tile-sized): the largest over the channels, for the
- * least similar channel decides (Tungsten takes the minimum weight); only the rows of the tile
- * that rows marks, or all when rows is NULL (the others' rows of wt are left as they were).
- * scratch holds scratch_floats(g, x1 - x0) floats.
+ * [x0, x1) × [y0, y1), into wt (row-major, tile-sized): per channel for a guide that weights
+ * each channel by its own (g->each, one plane per channel), else their mean over the channels,
+ * as NL-means for colour images has it (Buades, Coll and Morel 2011, "Non-Local Means
+ * Denoising", IPOL, the squared distance averaged over the three channels; Tungsten's NFOR takes
+ * the largest channel's instead, which did worse here: README, the denoiser's section). Only the
+ * rows of the tile that rows marks, or all when rows is NULL (the others' rows of wt are left as
+ * they were). scratch holds scratch_floats(g, x1 - x0) floats.
  * Pixels outside the image read the padded guide's copies of its border. Each loop runs along
  * rows of contiguous floats (a row's pixels and their channels), so that it vectorises. */
 static MC_ALWAYS_INLINE void patch_dist(const struct guide *g, int width, int x0, int y0, int x1, int y1,
                        const struct row_mask *rows, int dx, int dy, float *wt, float *scratch)
 {
-    int f = g->f, gc = g->gc, tw = x1 - x0, th = y1 - y0, ph = th + 2 * f;
-    int rw = (tw + 2 * f) * gc, tr = tw * gc, x, y, c, i, j;
+    int f = g->f, gc = g->gc, oc = g->each ? gc : 1; /* the channels of the distances */
+    int tw = x1 - x0, th = y1 - y0, ph = th + 2 * f;
+    int rw = (tw + 2 * f) * gc, tr = tw * oc, x, y, c, i, j;
     size_t stride = (size_t)(width + 2 * PAD) * (size_t)gc;
     ptrdiff_t off = (ptrdiff_t)dy * (ptrdiff_t)stride + (ptrdiff_t)dx * gc;
     float *dist = scratch, *tmp = scratch + (size_t)rw * ph, *col = tmp + (size_t)tr * ph;
@@ -232,29 +238,31 @@ static MC_ALWAYS_INLINE void patch_dist(const struct guide *g, int width, int x0
         size_t p = (size_t)(y0 - f + y + PAD) * stride + (size_t)(x0 - f + PAD) * gc;
         const float *ip = g->img + p, *iq = ip + off, *vpp = g->var + p, *vqp = vpp + off;
         float *dr = dist + (size_t)y * rw;
-        for (i = 0; (!rows || rows->in[y]) && i < rw; i++) {
+        if (rows && !rows->in[y])
+            continue;
+        for (i = 0; i < rw; i++) {
             float vp = vpp[i], vq = vqp[i], diff = ip[i] - iq[i];
             float dd = (diff * diff - (vp + (vp < vq ? vp : vq))) / (DIST_EPS + kk * (vp + vq));
             dr[i] = dd < DIST_CLAMP ? dd : DIST_CLAMP;
         }
+        if (!g->each)
+            channel_mean(dr, gc, tw + 2 * f);
     }
     /* The box filter over the patch, separably: rows into tmp, then columns. */
     for (y = 0; y < ph; y++)
         if (!rows || rows->in[y])
-            box_sum(dist + (size_t)y * rw, (size_t)gc, 2 * f + 1, tr, tmp + (size_t)y * tr);
+            box_sum(dist + (size_t)y * rw, (size_t)oc, 2 * f + 1, tr, tmp + (size_t)y * tr);
     for (y = 0; y < th; y++) {
         if (rows && !rows->out[y])
             continue;
         box_sum(tmp + (size_t)y * tr, (size_t)tr, 2 * f + 1, tr, col);
         for (j = 0; j < tr; j++)
             col[j] *= norm;
-        for (c = 0; c < gc && g->each; c++) {
+        for (c = 0; c < oc; c++) {
             float *o = wt + (size_t)c * tw * th + (size_t)y * tw;
             for (x = 0; x < tw; x++)
-                o[x] = col[x * gc + c] > 0.0f ? col[x * gc + c] : 0.0f;
+                o[x] = col[x * oc + c] > 0.0f ? col[x * oc + c] : 0.0f;
         }
-        if (!g->each)
-            channel_max(col, gc, tw, wt + (size_t)y * tw);
     }
 }
 
