@@ -69,7 +69,7 @@ struct guide {
 
 /* The image's size, the threads the tiles run on, and a tile's failure to get memory. */
 struct pool {
-    int width, height, threads, ntx;
+    int width, height, threads, ntx; /* ntx: the regression's tiles across (REG_W wide) */
     mcrt_status status;          /* MCRT_ERR_NOMEM when a tile could not get its buffers */
 };
 
@@ -112,14 +112,19 @@ static int clampi(int v, int lo, int hi) { return v < lo ? lo : v > hi ? hi : v;
  * every side, each border pixel a copy of the nearest edge pixel. */
 static void pad_copy(const float *src, int nc, int width, int height, float scale, float *dst)
 {
-    int pw = width + 2 * PAD, x, y, c;
-    for (y = 0; y < height + 2 * PAD; y++)
-        for (x = 0; x < pw; x++) {
-            const float *s = src + ((size_t)clampi(y - PAD, 0, height - 1) * width
-                                    + (size_t)clampi(x - PAD, 0, width - 1)) * nc;
-            for (c = 0; c < nc; c++)
-                dst[((size_t)y * pw + x) * nc + c] = s[c] * scale;
-        }
+    size_t pw = (size_t)(width + 2 * PAD) * (size_t)nc, rw = (size_t)width * (size_t)nc, i;
+    int y, x, c;
+    for (y = 0; y < height + 2 * PAD; y++) {
+        const float *s = src + (size_t)clampi(y - PAD, 0, height - 1) * rw, *last = s + rw - nc;
+        float *d = dst + (size_t)y * pw;
+        for (x = 0; x < PAD; x++)
+            for (c = 0; c < nc; c++) {
+                d[(size_t)x * nc + (size_t)c] = s[c] * scale;
+                d[PAD * (size_t)nc + rw + (size_t)x * nc + (size_t)c] = last[c] * scale;
+            }
+        for (i = 0; i < rw; i++)
+            d[PAD * (size_t)nc + i] = s[i] * scale;
+    }
 }
 
 /* e^-v[i] for each of n distances 0 <= v[i] <= DIST_CLAMP, in place: 2^-t (t = v·log2 e) as
@@ -461,6 +466,7 @@ static void solve(double *M, int n, double *b)
 /* The regression's window: offset o = (dy + R)·SIDE + (dx + R), padded with zero weights to NWP,
  * a multiple of LANES. */
 enum { SIDE = 2 * REG_R + 1, NW = SIDE * SIDE, NWP = (NW + LANES - 1) / LANES * LANES };
+enum { REG_W = 32 }; /* the regression's tiles: MC_TILE rows, REG_W columns */
 
 /* Σ_o a_k[o]·col_b[o] for both bandwidths' a_0 and a_1 and nb <= DOT_BLOCK columns, into
  * out[k][b], each in LANES partial sums added in double at the end: the same operations in the
@@ -677,9 +683,9 @@ static MC_ALWAYS_INLINE void reg_tile_body(void *ctx, struct tile_worker *w, int
     int width = j->pl->width, tw = x1 - x0, th = y1 - y0;
     int aw = tw + 2 * R, dx, dy, x, y, c, a, o, k, i, nfit = 0;
     size_t np = (size_t)tw * th, l, npl = (size_t)aw * (size_t)(th + 2 * R);
-    size_t ti = (size_t)(y0 / MC_TILE) * (size_t)j->pl->ntx + (size_t)(x0 / MC_TILE);
+    size_t ti = (size_t)(y0 / MC_TILE) * (size_t)j->pl->ntx + (size_t)(x0 / REG_W);
     struct row_mask rows;
-    int fit[MC_TILE * MC_TILE]; /* the fitted pixels, tile-local indices in row-major order */
+    int fit[MC_TILE * REG_W]; /* the fitted pixels, tile-local indices in row-major order */
     float *dist, *acc;
     struct window *v;
     (void)w;
@@ -693,7 +699,7 @@ static MC_ALWAYS_INLINE void reg_tile_body(void *ctx, struct tile_worker *w, int
     if (nfit == 0)
         return;
     row_mask_reach(&rows, th, j->g->f);
-    dist = mc_malloc((np * NWP + np + scratch_floats(j->g, MC_TILE)) * sizeof *dist);
+    dist = mc_malloc((np * NWP + np + scratch_floats(j->g, REG_W)) * sizeof *dist);
     acc = mc_calloc(8 * npl, sizeof *acc);
     v = mc_malloc(sizeof *v);
     if (!dist || !acc || !v) {
@@ -747,34 +753,48 @@ static MC_ALWAYS_INLINE void reg_tile_body(void *ctx, struct tile_worker *w, int
     j->acc[ti] = acc;
 }
 
-TILE_FUNCTIONS(reg_tile, reg_tile_body)
+/* A band of MC_TILE rows (run's bands), as tiles REG_W wide: wider than the runner's tiles, so
+ * that less of the patches' and the windows' reach around a tile is computed and summed again. */
+static MC_ALWAYS_INLINE void reg_band_body(void *ctx, struct tile_worker *w, int x0, int y0,
+                                           int x1, int y1)
+{
+    struct reg_job *j = ctx;
+    int x;
+    (void)x0;
+    (void)x1;
+    for (x = 0; x < j->pl->width; x += REG_W)
+        reg_tile_body(ctx, w, x, y0, x + REG_W < j->pl->width ? x + REG_W : j->pl->width, y1);
+}
+TILE_FUNCTIONS(reg_band, reg_band_body)
 
-/* The tiles' overlapping sums of j->acc added into sum (per pixel and bandwidth R, G, B,
- * weight), in tile order whatever the threads' order was, and the tiles' sums freed. */
+/* The tiles' overlapping sums of j->acc added into sum (per bandwidth k and channel c, R, G, B
+ * and weight, a plane (k·4 + c) of the image's pixels), in tile order whatever the threads'
+ * order was, and the tiles' sums freed. */
 static void merge_tiles(const struct pool *pl, float **tiles, double *sum)
 {
-    int nty = (pl->height + MC_TILE - 1) / MC_TILE, tx, ty, x, y, c, k;
+    int nty = (pl->height + MC_TILE - 1) / MC_TILE, tx, ty, x, y, p;
+    size_t n = (size_t)pl->width * (size_t)pl->height;
     for (ty = 0; ty < nty; ty++)
         for (tx = 0; tx < pl->ntx; tx++) {
             float *acc = tiles[(size_t)ty * pl->ntx + tx];
-            int x0 = tx * MC_TILE - REG_R, y0 = ty * MC_TILE - REG_R;
-            int aw = (tx * MC_TILE + MC_TILE > pl->width ? pl->width - tx * MC_TILE : MC_TILE)
+            int x0 = tx * REG_W - REG_R, y0 = ty * MC_TILE - REG_R;
+            int aw = (tx * REG_W + REG_W > pl->width ? pl->width - tx * REG_W : REG_W)
                      + 2 * REG_R;
             int ah = (ty * MC_TILE + MC_TILE > pl->height ? pl->height - ty * MC_TILE : MC_TILE)
                      + 2 * REG_R;
+            /* the part of the tile's sums inside the image: [xa, xb) × [ya, yb) */
+            int xa = x0 < 0 ? -x0 : 0, xb = x0 + aw > pl->width ? pl->width - x0 : aw;
+            int ya = y0 < 0 ? -y0 : 0, yb = y0 + ah > pl->height ? pl->height - y0 : ah;
             size_t npl = (size_t)aw * (size_t)ah;
             if (!acc)
                 continue;
-            for (k = 0; k < 2; k++)
-                for (y = 0; y < ah; y++)
-                    for (x = 0; x < aw; x++) {
-                        if (x0 + x < 0 || x0 + x >= pl->width || y0 + y < 0
-                            || y0 + y >= pl->height)
-                            continue;
-                        for (c = 0; c < 4; c++)
-                            sum[(((size_t)(y0 + y) * pl->width + (size_t)(x0 + x)) * 2 + k) * 4
-                                + c] += acc[((size_t)k * 4 + c) * npl + (size_t)y * aw + x];
-                    }
+            for (p = 0; p < 8; p++)
+                for (y = ya; y < yb; y++) {
+                    const float *a = acc + (size_t)p * npl + (size_t)y * aw;
+                    double *o = sum + (size_t)p * n + (size_t)(y0 + y) * pl->width + x0;
+                    for (x = xa; x < xb; x++)
+                        o[x] += a[x];
+                }
             free(acc);
             tiles[(size_t)ty * pl->ntx + tx] = NULL;
         }
@@ -805,21 +825,22 @@ static mcrt_status regress(struct pool *pl, const struct guide *g, const float *
         free(need);
         return mc_fail(d, MCRT_ERR_NOMEM, "out of memory for the denoiser");
     }
-    st = run(pl, 0, TILE_FN(reg_tile), &j, d);
+    st = run(pl, 1, TILE_FN(reg_band), &j, d);
     merge_tiles(pl, j.acc, sum);
     for (i = 0; i < n; i++) {
         int x = (int)(i % (size_t)pl->width), y = (int)(i / (size_t)pl->width);
         need[i] = (x % LATTICE != 0 || y % LATTICE != 0)
-                  && (sum[i * 8 + 3] < COVER_MIN || sum[i * 8 + 7] < COVER_MIN);
+                  && (sum[3 * n + i] < COVER_MIN || sum[7 * n + i] < COVER_MIN);
     }
     j.need = need;
     if (st == MCRT_OK)
-        st = run(pl, 0, TILE_FN(reg_tile), &j, d);
+        st = run(pl, 1, TILE_FN(reg_band), &j, d);
     merge_tiles(pl, j.acc, sum);
     for (i = 0; i < n; i++)
         for (k = 0; k < 2; k++)
             for (c = 0; c < 3; c++)
-                out[k][i * 3 + c] = (float)(sum[(i * 2 + k) * 4 + c] / sum[(i * 2 + k) * 4 + 3]);
+                out[k][i * 3 + c] = (float)(sum[(size_t)(k * 4 + c) * n + i]
+                                            / sum[(size_t)(k * 4 + 3) * n + i]);
     free(j.acc);
     free(sum);
     free(need);
@@ -835,24 +856,41 @@ static float sq(float x) { return x * x; }
  * (the error estimates use the unsmoothed ones, which are unbiased). */
 static void box_mean(const float *v, int nc, int width, int height, int r, float *tmp, float *out)
 {
-    int x, y, c, i;
+    size_t rw = (size_t)width * (size_t)nc, j;
+    int x, y, c, i, in0 = r < width ? r : width, in1 = width - r > in0 ? width - r : in0;
     float norm = 1.0f / (float)((2 * r + 1) * (2 * r + 1));
-    for (y = 0; y < height; y++)
-        for (x = 0; x < width; x++)
+    /* Along the rows: the pixels [in0, in1) reach no edge, the others repeat it. */
+    for (y = 0; y < height; y++) {
+        const float *row = v + (size_t)y * rw;
+        float *t = tmp + (size_t)y * rw;
+        for (x = 0; x < width; x++) {
+            if (x == in0 && in1 > in0) {
+                box_sum_taps(row + (size_t)(in0 - r) * nc, (size_t)nc, 2 * r + 1,
+                             (in1 - in0) * nc, t + (size_t)in0 * nc);
+                x = in1 - 1;
+                continue;
+            }
             for (c = 0; c < nc; c++) {
                 float s = 0.0f;
                 for (i = -r; i <= r; i++)
-                    s += v[((size_t)y * width + (size_t)clampi(x + i, 0, width - 1)) * nc + c];
-                tmp[((size_t)y * width + x) * nc + c] = s;
+                    s += row[(size_t)clampi(x + i, 0, width - 1) * nc + (size_t)c];
+                t[(size_t)x * nc + (size_t)c] = s;
             }
-    for (y = 0; y < height; y++)
-        for (x = 0; x < width; x++)
-            for (c = 0; c < nc; c++) {
-                float s = 0.0f;
-                for (i = -r; i <= r; i++)
-                    s += tmp[((size_t)clampi(y + i, 0, height - 1) * width + x) * nc + c];
-                out[((size_t)y * width + x) * nc + c] = s * norm;
-            }
+        }
+    }
+    /* Along the columns, the rows' sums added row by row in the same order. */
+    for (y = 0; y < height; y++) {
+        float *o = out + (size_t)y * rw;
+        for (j = 0; j < rw; j++)
+            o[j] = 0.0f;
+        for (i = -r; i <= r; i++) {
+            const float *t = tmp + (size_t)clampi(y + i, 0, height - 1) * rw;
+            for (j = 0; j < rw; j++)
+                o[j] += t[j];
+        }
+        for (j = 0; j < rw; j++)
+            o[j] *= norm;
+    }
 }
 
 /* MSE of the mean of candidates fa (filtered from B's guides) and fb, per pixel (nfor.h). */
@@ -903,7 +941,7 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
     pl.width = w;
     pl.height = h;
     pl.threads = threads;
-    pl.ntx = (w + MC_TILE - 1) / MC_TILE;
+    pl.ntx = (w + REG_W - 1) / REG_W;
 
     /* The emission, taken out of the colour. */
     if (E[0]) {
