@@ -222,12 +222,12 @@ static void row_mask_reach(struct row_mask *m, int th, int f)
 
 /* The NL-means patch distances of pixel p = (x, y) against p + (dx, dy), for every p of the tile
  * [x0, x1) × [y0, y1), into wt (row-major, tile-sized): per channel for a guide that weights
- * each channel by its own (g->each, one plane per channel), else their mean over the channels,
- * as NL-means for colour images has it (Buades, Coll and Morel 2011, "Non-Local Means
- * Denoising", IPOL, the squared distance averaged over the three channels; Tungsten's NFOR takes
- * the largest channel's instead, which did worse here: README, the denoiser's section). Only the
- * rows of the tile that rows marks, or all when rows is NULL (the others' rows of wt are left as
- * they were). scratch holds scratch_floats(g, x1 - x0) floats.
+ * each channel by its own (g->each; interleaved as the guide's channels), else their mean over
+ * the channels, as NL-means for colour images has it (Buades, Coll and Morel 2011, "Non-Local
+ * Means Denoising", IPOL, the squared distance averaged over the three channels; Tungsten's NFOR
+ * takes the largest channel's instead, which did worse here: README, the denoiser's section).
+ * Only the rows of the tile that rows marks, or all when rows is NULL (the others' rows of wt are
+ * left as they were). scratch holds scratch_floats(g, x1 - x0) floats.
  * Pixels outside the image read the padded guide's copies of its border. Each loop runs along
  * rows of contiguous floats (a row's pixels and their channels), so that it vectorises. */
 static MC_ALWAYS_INLINE void patch_dist(const struct guide *g, int width, int x0, int y0, int x1, int y1,
@@ -235,7 +235,7 @@ static MC_ALWAYS_INLINE void patch_dist(const struct guide *g, int width, int x0
 {
     int f = g->f, gc = g->gc, oc = g->each ? gc : 1; /* the channels of the distances */
     int tw = x1 - x0, th = y1 - y0, ph = th + 2 * f;
-    int rw = (tw + 2 * f) * gc, tr = tw * oc, x, y, c, i, j;
+    int rw = (tw + 2 * f) * gc, tr = tw * oc, y, i, j;
     size_t stride = (size_t)(width + 2 * PAD) * (size_t)gc;
     ptrdiff_t off = (ptrdiff_t)dy * (ptrdiff_t)stride + (ptrdiff_t)dx * gc;
     float *dist = scratch, *tmp = scratch + (size_t)rw * ph, *col = tmp + (size_t)tr * ph;
@@ -263,12 +263,9 @@ static MC_ALWAYS_INLINE void patch_dist(const struct guide *g, int width, int x0
         if (rows && !rows->out[y])
             continue;
         box_sum(tmp + (size_t)y * tr, (size_t)tr, 2 * f + 1, tr, col);
-        for (j = 0; j < tr; j++)
-            col[j] *= norm;
-        for (c = 0; c < oc; c++) {
-            float *o = wt + (size_t)c * tw * th + (size_t)y * tw;
-            for (x = 0; x < tw; x++)
-                o[x] = col[x * oc + c] > 0.0f ? col[x * oc + c] : 0.0f;
+        for (j = 0; j < tr; j++) {
+            float v = col[j] * norm;
+            wt[(size_t)y * tr + (size_t)j] = v > 0.0f ? v : 0.0f;
         }
     }
 }
@@ -310,10 +307,30 @@ static mcrt_status run(struct pool *pl, int bands, mc_tile_fn fn, void *ctx, mc_
 struct nlm_job {
     struct pool *pl;
     const struct guide *g;
-    const float *src; /* sc planes of width × height (nlm's copy of its interleaved src) */
+    const float *src; /* a colour guide's: sc planes of width × height (nlm's copy of its
+                         interleaved src); a feature guide's: src as it is, interleaved */
     int sc, r;
     float *dst;
 };
+
+/* al[i] += w[i]·s[i] for i < n: a weight of 0 adds nothing, even to a value that is not
+ * finite. */
+static MC_ALWAYS_INLINE void add_weighted(float *al, const float *w, const float *s, int n)
+{
+    int i;
+    for (i = 0; i < n; i++) {
+        float ws = w[i] * s[i];
+        al[i] += w[i] != 0.0f ? ws : 0.0f;
+    }
+}
+
+/* al[i] += w[i] for i < n. */
+static MC_ALWAYS_INLINE void add_weights(float *al, const float *w, int n)
+{
+    int i;
+    for (i = 0; i < n; i++)
+        al[i] += w[i];
+}
 
 static MC_ALWAYS_INLINE void nlm_tile_body(void *ctx, struct tile_worker *w, int x0, int y0, int x1,
                                         int y1)
@@ -323,8 +340,9 @@ static MC_ALWAYS_INLINE void nlm_tile_body(void *ctx, struct tile_worker *w, int
     int sc = j->sc, wc = j->g->each ? sc : 1, dx, dy, x, y, c;
     size_t np = (size_t)tw * th, n = (size_t)width * (size_t)height;
     float *wt = mc_malloc((np * (size_t)wc + scratch_floats(j->g, tw)) * sizeof *wt);
-    /* Per channel a plane of sums of weighted values, then per weight channel one of weights:
-     * over a row of offsets in float (part, psum: twice as many in a vector as doubles), then
+    /* The sums of weighted values, then of weights (a colour guide's: a plane per channel, then
+     * one of weights; a feature guide's: interleaved as its channels), over a row of offsets
+     * in float (part, psum: twice as many in a vector as doubles), then
      * added to the whole window's in double (acc), where the sums of the error maps' terms,
      * which span many orders of magnitude, keep their precision. */
     double *acc = mc_calloc(np * (size_t)(sc + wc), sizeof *acc);
@@ -348,23 +366,19 @@ static MC_ALWAYS_INLINE void nlm_tile_body(void *ctx, struct tile_worker *w, int
             weights(wt, (int)np * wc, dx == 0 && dy == 0);
             for (y = ya; y < yb; y++) {
                 size_t l = (size_t)(y - y0) * tw + (size_t)(xa - x0);
-                for (c = 0; c < sc; c++) {
-                    const float *s = j->src + (size_t)c * n + (size_t)(y + dy) * width
-                                     + (size_t)(xa + dx);
-                    const float *wl = wt + (size_t)(wc > 1 ? c : 0) * np + l;
-                    float *al = part + (size_t)c * np + l;
-                    /* A weight of 0 adds nothing, even to a value that is not finite. */
-                    for (x = 0; x < xb - xa; x++) {
-                        float ws = wl[x] * s[x];
-                        al[x] += wl[x] != 0.0f ? ws : 0.0f;
-                    }
+                int m = xb - xa;
+                if (wc > 1) {
+                    /* Each channel by its own weight: values, weights and sums interleaved. */
+                    const float *s = j->src + ((size_t)(y + dy) * width + (size_t)(xa + dx)) * sc;
+                    add_weighted(part + l * sc, wt + l * sc, s, m * sc);
+                    add_weights(psum + l * sc, wt + l * sc, m * sc);
+                    continue;
                 }
-                for (c = 0; c < wc; c++) {
-                    const float *wl = wt + (size_t)c * np + l;
-                    float *al = psum + (size_t)c * np + l;
-                    for (x = 0; x < xb - xa; x++)
-                        al[x] += wl[x];
-                }
+                for (c = 0; c < sc; c++)
+                    add_weighted(part + (size_t)c * np + l, wt + l,
+                                 j->src + (size_t)c * n + (size_t)(y + dy) * width
+                                     + (size_t)(xa + dx), m);
+                add_weights(psum + l, wt + l, m);
             }
         }
         for (i = 0; i < np * (size_t)(sc + wc); i++)
@@ -375,8 +389,8 @@ static MC_ALWAYS_INLINE void nlm_tile_body(void *ctx, struct tile_worker *w, int
             size_t l = (size_t)(y - y0) * tw + (size_t)(x - x0);
             for (c = 0; c < sc; c++)
                 j->dst[((size_t)y * width + x) * sc + c]
-                    = (float)(acc[(size_t)c * np + l]
-                              / acc[(size_t)(sc + (wc > 1 ? c : 0)) * np + l]);
+                    = (float)(wc > 1 ? acc[l * sc + c] / acc[(np + l) * sc + c]
+                                     : acc[(size_t)c * np + l] / acc[np * sc + l]);
         }
     free(wt);
     free(acc);
@@ -405,18 +419,19 @@ static mcrt_status nlm(struct pool *pl, const struct guide *g, const float *src,
                        float *dst, mc_diag *d)
 {
     size_t i, n = (size_t)pl->width * (size_t)pl->height;
-    float *planes = mc_malloc(n * (size_t)sc * sizeof *planes);
+    /* A colour guide's values as planes (nlm_tile_body); a feature guide's as they are. */
+    float *planes = g->each ? NULL : mc_malloc(n * (size_t)sc * sizeof *planes);
     struct nlm_job j;
     mcrt_status st;
     int c;
-    if (!planes)
+    if (!g->each && !planes)
         return mc_fail(d, MCRT_ERR_NOMEM, "out of memory for the denoiser");
-    for (i = 0; i < n; i++)
+    for (i = 0; planes && i < n; i++)
         for (c = 0; c < sc; c++)
             planes[(size_t)c * n + i] = src[i * (size_t)sc + (size_t)c];
     j.pl = pl;
     j.g = g;
-    j.src = planes;
+    j.src = planes ? planes : src;
     j.sc = sc;
     j.r = r;
     j.dst = dst;
