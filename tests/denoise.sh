@@ -29,20 +29,30 @@ black() {
     head -c $(($1 * $2 * 12)) /dev/zero >>"$3"
 }
 
-# error NAME SIZE: render NAME on a SIZE² film at 16 spp (raw and denoised) and its reference;
-# sets est (the denoised est_relmse), tru (its true relMSE), raw_est and raw_tru (the raw's).
+# error NAME SIZE SEEDS...: render NAME on a SIZE² film at 16 spp (raw and denoised) for each
+# seed and its reference (seed 99); sets est (the denoised est_relmse), tru (its true relMSE),
+# raw_est and raw_tru (the raw's), each the mean over the seeds, and leaves the last seed's
+# images in d.pfm and raw.pfm.
 error() {
-    film "$1" "$2" "$2" >"$tmp/$1.mcrt"
-    black "$2" "$2" "$tmp/black.pfm"
+    name=$1 size=$2
+    shift 2
+    film "$name" "$size" "$size" >"$tmp/$name.mcrt"
+    black "$size" "$size" "$tmp/black.pfm"
     "$MCRT" --quiet --spp 1024 --seed 99 -o "$tmp/ref.pfm" --stats "$tmp/ref.json" \
-        "$tmp/$1.mcrt" && "$MCRT" --quiet --spp 16 --seed 1 --denoise -o "$tmp/d.pfm" \
-        --stats "$tmp/d.json" "$tmp/$1.mcrt" && "$MCRT" --quiet --spp 16 --seed 1 \
-        -o "$tmp/raw.pfm" "$tmp/$1.mcrt" || return 1
+        "$tmp/$name.mcrt" || return 1
     ref_est=$(stat "$tmp/ref.json" est_relmse)
-    est=$(stat "$tmp/d.json" est_relmse)
-    raw_est=$(stat "$tmp/d.json" est_relmse_raw)
-    tru=$(echo "$(field relMSE "$tmp/d.pfm" "$tmp/ref.pfm") $ref_est" | awk '{ print $1 - $2 }')
-    raw_tru=$(echo "$(field relMSE "$tmp/raw.pfm" "$tmp/ref.pfm") $ref_est" | awk '{ print $1 - $2 }')
+    sums=
+    for seed in "$@"; do
+        "$MCRT" --quiet --spp 16 --seed "$seed" --denoise -o "$tmp/d.pfm" --stats "$tmp/d.json" \
+            "$tmp/$name.mcrt" && "$MCRT" --quiet --spp 16 --seed "$seed" -o "$tmp/raw.pfm" \
+            "$tmp/$name.mcrt" || return 1
+        sums="$sums $(stat "$tmp/d.json" est_relmse) $(field relMSE "$tmp/d.pfm" "$tmp/ref.pfm")"
+        sums="$sums $(stat "$tmp/d.json" est_relmse_raw) $(field relMSE "$tmp/raw.pfm" "$tmp/ref.pfm")"
+    done
+    set -- $(echo "$sums $ref_est" | awk '{ n = (NF - 1) / 4
+        for (i = 0; i < n; i++) for (k = 1; k <= 4; k++) m[k] += $(4 * i + k) / n
+        print m[1], m[2] - $NF, m[3], m[4] - $NF }')
+    est=$1 tru=$2 raw_est=$3 raw_tru=$4
 }
 # energy NAME: the denoised image's mean within 1% of the raw's.
 energy() {
@@ -58,7 +68,7 @@ energy() {
 # §2, make bench-denoise: 0.81 of the truth at 16 spp, 1.32 at 64). On smaller films more of the
 # error sits in the few pixels on the light's corners, where the halves agree by chance and the
 # emission's own variance is all the estimate sees: 0.48 of the truth on 128², outside the factor.
-if error cornell 160; then
+if error cornell 160 1; then
     if echo "$est $tru" | awk '{ exit !($1 > $2 / 2 && $1 < $2 * 2) }'; then
         ok "cornell: denoised est. relMSE $est vs true $tru (raw $raw_tru) at 16 spp, within a factor 2"
     else
@@ -74,9 +84,11 @@ fi
 # error: checked is that the denoised estimate misses by no more than a factor 2 beyond the raw's
 # miss, (est/true denoised) / (est/true raw) > 0.5, and is over
 # the truth by no more than the issue's factor 2 (with the regression's variance over 9×9 pixels
-# the denoised estimate sees more than the raw's here: 0.29 of the truth against 0.13). The
-# issue's factor 2 of the truth is met on the 160² film (the README's denoiser table), not here.
-if error cornell-spheres 96; then
+# the denoised estimate sees more than the raw's here: 0.27 of the truth against 0.13). Each
+# figure is the mean over three seeds: one render's caustic fireflies move either ratio by a
+# factor 2 from seed to seed (seed 1 alone: 2.07). The issue's factor 2 of the truth is met on
+# the 160² film (the README's denoiser table), not here.
+if error cornell-spheres 96 1 2 3; then
     if echo "$est $tru $raw_est $raw_tru" | awk '{ r = ($1 / $2) / ($3 / $4); exit !(r > 0.5 && $1 < 2 * $2) }'; then
         ok "cornell-spheres: denoised est/true $est/$tru, raw $raw_est/$raw_tru: misses by at most 2x the raw's, over by at most 2x"
     else

@@ -88,7 +88,9 @@ static inline vec3 light_sample(const struct scene *s, const struct surface *sf,
     double pmf;
     float light_pdf, weight;
     vec3 wi, f, target;
-    int li = mc_light_select_sample(&s->light_select, sf->p, sf->ns, mc_sampler_1d_double(smp), &pmf);
+    /* With one light there is nothing to choose: its draw would be a sampler dimension spent. */
+    double u_light = s->light_count > 1 ? mc_sampler_1d_double(smp) : 0.5;
+    int li = mc_light_select_sample(&s->light_select, sf->p, sf->ns, u_light, &pmf);
     vec2 u = mc_sampler_2d(smp);
     if (li < 0 || !mc_light_sample(&s->light_scene, &s->lights[li], sf->p, time, u, &ls)
         || v3_is_zero(ls.L) || through_surface(b, sf->ng, frame_to_world(fr, wo), ls.wi))
