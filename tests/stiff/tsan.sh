@@ -1,7 +1,7 @@
 #!/bin/sh
 # tsan.sh: run by `make tsan` on a ThreadSanitizer build ($O/mcrt): renders every scene in scenes/
-# and tests/stiff/ with 4 threads (more threads than cores, so tiles interleave) at 2 spp, and
-# the caustic scene with every integrator, runs
+# and tests/stiff/ with 4 threads (more threads than cores, so tiles interleave) at 2 spp, the
+# caustic scene with every integrator and a small Cornell box denoised, runs
 # test_tiles (the progress callback), and fails on any ThreadSanitizer report or failed render.
 # Not part of `make test` (it needs its own build). Prints "ok ..." or "FAIL ...: why" per scene,
 # then "N passed, N failed".
@@ -33,6 +33,18 @@ for integrator in $("$MCRT" --list integrator | cut -f1); do
         head -n 30 "$tmp/err"
     fi
 done
+# The denoiser's NL-means and regression passes (their bands run on the same tiles runner, each
+# writing its own sums; src/denoise/nfor.c), on a small film so that TSan's slowdown stays small.
+sed -E "s/^film \{ *width [0-9]+ height [0-9]+/film { width 48 height 40/" scenes/cornell.mcrt \
+    >"$tmp/small.mcrt"
+"$MCRT" "$tmp/small.mcrt" --spp 4 --threads 4 --denoise -o "$tmp/out.pfm" 2>"$tmp/err"
+rc=$?
+if [ "$rc" -eq 0 ] && ! grep -q "ThreadSanitizer" "$tmp/err"; then
+    ok "denoise"
+else
+    fail "denoise" "exit status $rc"
+    head -n 30 "$tmp/err"
+fi
 # The command line shows no progress bar without a terminal: the progress callback's threads
 # are exercised by test_tiles (2 threads, a slow callback).
 if "$O/tests/test_tiles" >"$tmp/out" 2>"$tmp/err" && ! grep -q "ThreadSanitizer" "$tmp/err"; then
