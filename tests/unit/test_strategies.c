@@ -9,10 +9,12 @@
  * Šidák).
  * Error: relMSE against a 1024-spp MIS reference with another seed, mean over pixels and channels
  * of (x − ref)²/(ref² + 0.01). Single strategies leave fireflies, whose heavy tail makes a standard
- * error from the pixel spread meaningless, so the ordering is a rank test instead: five renders per
- * strategy with different seeds, and every render of the worse strategy must have a larger error
- * than every render of the better one (complete separation of 5 against 5: p = 1/252 if both
- * strategies had the same error distribution). */
+ * error from the pixel spread meaningless, so the ordering is a rank test instead: eight renders
+ * per strategy with different seeds, and a one-sided Mann-Whitney test (Mann and Whitney 1947)
+ * of the worse strategy's errors above the better one's at p < 0.001 (its exact null
+ * distribution: at most 4 of the 64 pairs inverted). MIS's own errors have that tail too: on the
+ * glossy scene, 40 seeds at 32 spp ranged 0.0030 to 0.032 (median 0.0036), so that five seeds'
+ * complete separation, the test before, failed on one seed in ten of either sampler. */
 #include <math.h>
 #include <stdlib.h>
 
@@ -105,25 +107,51 @@ static double worst_block_z(const float *a, const float *b, int w, int h)
 
 static const char *const names[] = {"mis", "bsdf", "light"};
 
-enum { SEEDS = 5 };
+enum { SEEDS = 8 };
 
-/* relMSE of strategy `name` at spp for SEEDS seeds; its smallest and largest. */
-static int errors(const char *text, const float *ref, const char *name, int spp, double *lo, double *hi)
+/* relMSE of strategy `name` at spp for SEEDS seeds, into e; its smallest and largest. */
+static int errors(const char *text, const float *ref, const char *name, int spp, double e[SEEDS],
+                  double *lo, double *hi)
 {
     int s, w, h;
     *lo = INFINITY;
     *hi = 0.0;
     for (s = 0; s < SEEDS; s++) {
-        double e, se;
+        double se;
         float *img = render(text, name, spp, (uint64_t)(1 + s), &w, &h);
         if (!img)
             return 0;
-        rel_mse(img, ref, w * h, &e, &se);
-        *lo = fmin(*lo, e);
-        *hi = fmax(*hi, e);
+        rel_mse(img, ref, w * h, &e[s], &se);
+        *lo = fmin(*lo, e[s]);
+        *hi = fmax(*hi, e[s]);
         free(img);
     }
     return 1;
+}
+
+/* The one-sided Mann-Whitney test that b's values lie above a's (SEEDS each): U, the pairs with
+ * a_i >= b_j, and P(U <= u) if both came from one continuous distribution, exactly: the count of
+ * the C(2·SEEDS, SEEDS) orderings with U <= u, by the recurrence on the largest of all values
+ * (it is an a, adding the j b's below it to U, or a b, adding nothing). */
+static double mann_whitney_p(const double a[SEEDS], const double b[SEEDS], int *u)
+{
+    enum { N = SEEDS, MAXU = SEEDS * SEEDS };
+    static double c[N + 1][N + 1][MAXU + 1];
+    double below = 0.0, all = 0.0;
+    int i, j, k;
+    for (*u = 0, i = 0; i < N; i++)
+        for (j = 0; j < N; j++)
+            *u += a[i] >= b[j];
+    for (i = 0; i <= N; i++)
+        for (j = 0; j <= N; j++)
+            for (k = 0; k <= MAXU; k++)
+                c[i][j][k] = i == 0 || j == 0 ? (k == 0)
+                                              : (k >= j ? c[i - 1][j][k - j] : 0.0) + c[i][j - 1][k];
+    for (k = 0; k <= MAXU; k++) {
+        all += c[N][N][k];
+        below += k <= *u ? c[N][N][k] : 0.0;
+    }
+    return below / all;
 }
 
 static void test_agreement(void)
@@ -146,18 +174,23 @@ static void test_glossy(void)
 {
     int w, h, i;
     float *ref = render(glossy, "mis", 1024, 99, &w, &h);
-    double lo[3], hi[3];
+    double lo[3], hi[3], e[3][SEEDS];
     T_CHECK(ref != NULL, "reference");
     if (!ref)
         return;
     for (i = 0; i < 3; i++) {
-        T_CHECK(errors(glossy, ref, names[i], 32, &lo[i], &hi[i]), "%s rendered", names[i]);
+        T_CHECK(errors(glossy, ref, names[i], 32, e[i], &lo[i], &hi[i]), "%s rendered", names[i]);
         T_NOTE("glossy scene, 32 spp, %d seeds: %-5s relMSE %.3e .. %.3e", SEEDS, names[i], lo[i],
                hi[i]);
     }
-    for (i = 1; i < 3; i++)
-        T_CHECK(lo[i] > hi[0], "MIS (up to %.3e) not below every %s render (from %.3e)", hi[0],
-                names[i], lo[i]);
+    for (i = 1; i < 3; i++) {
+        int u;
+        double p = mann_whitney_p(e[0], e[i], &u);
+        T_CHECK(p < 1e-3, "MIS not below %s: %d of %d pairs inverted, p = %.2g (limit 0.001)",
+                names[i], u, SEEDS * SEEDS, p);
+        T_NOTE("glossy scene: MIS below %s, %d of %d pairs inverted, p = %.2g", names[i], u,
+               SEEDS * SEEDS, p);
+    }
     free(ref);
 }
 
@@ -165,17 +198,19 @@ static void test_small_light(void)
 {
     int w, h;
     float *ref = render(small_light, "mis", 1024, 99, &w, &h);
-    double llo, lhi, blo, bhi;
+    double llo, lhi, blo, bhi, le[SEEDS], be[SEEDS], p;
+    int u;
     T_CHECK(ref != NULL, "reference");
     if (!ref)
         return;
-    T_CHECK(errors(small_light, ref, "light", 16, &llo, &lhi)
-                && errors(small_light, ref, "bsdf", 16, &blo, &bhi),
+    T_CHECK(errors(small_light, ref, "light", 16, le, &llo, &lhi)
+                && errors(small_light, ref, "bsdf", 16, be, &blo, &bhi),
             "rendered");
     T_NOTE("small light, 16 spp, %d seeds: light relMSE %.3e .. %.3e, bsdf %.3e .. %.3e", SEEDS,
            llo, lhi, blo, bhi);
-    T_CHECK(blo > lhi, "light sampling (up to %.3e) not below every BSDF render (from %.3e)", lhi,
-            blo);
+    p = mann_whitney_p(le, be, &u);
+    T_CHECK(p < 1e-3, "light sampling not below BSDF sampling: %d of %d pairs inverted, p = %.2g",
+            u, SEEDS * SEEDS, p);
     free(ref);
 }
 
