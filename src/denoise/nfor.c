@@ -69,7 +69,7 @@ struct guide {
 
 /* The image's size, the threads the tiles run on, and a tile's failure to get memory. */
 struct pool {
-    int width, height, threads, ntx; /* ntx: the regression's tiles across (REG_W wide) */
+    int width, height, threads;
     mcrt_status status;          /* MCRT_ERR_NOMEM when a tile could not get its buffers */
 };
 
@@ -105,6 +105,20 @@ struct pool {
     }
 #define TILE_FN(name) name
 #endif
+
+/* The tile functions NAME (TILE_FUNCTIONS) of a band of rows, run's bands: TILE_BODY over its
+ * tiles TILE_W wide, left to right; JOB, the context's type, holds the pool pl. */
+#define BAND_FUNCTIONS(name, tile_body, job, tile_w)                                            \
+    static MC_ALWAYS_INLINE void name##_body(void *ctx, struct tile_worker *w, int x0, int y0,  \
+                                             int x1, int y1)                                   \
+    {                                                                                          \
+        int x, width = ((job *)ctx)->pl->width;                                                \
+        (void)x0;                                                                              \
+        (void)x1;                                                                              \
+        for (x = 0; x < width; x += (tile_w))                                                  \
+            tile_body(ctx, w, x, y0, x + (tile_w) < width ? x + (tile_w) : width, y1);         \
+    }                                                                                          \
+    TILE_FUNCTIONS(name, name##_body)
 
 static int clampi(int v, int lo, int hi) { return v < lo ? lo : v > hi ? hi : v; }
 
@@ -402,17 +416,7 @@ static MC_ALWAYS_INLINE void nlm_tile_body(void *ctx, struct tile_worker *w, int
  * tile's rows are long (the result is the same for any tiling: a pixel's sums over the offsets
  * are taken in the same order). */
 enum { NLM_W = 128 };
-static MC_ALWAYS_INLINE void nlm_band_body(void *ctx, struct tile_worker *w, int x0, int y0,
-                                           int x1, int y1)
-{
-    struct nlm_job *j = ctx;
-    int x;
-    (void)x0;
-    (void)x1;
-    for (x = 0; x < j->pl->width; x += NLM_W)
-        nlm_tile_body(ctx, w, x, y0, x + NLM_W < j->pl->width ? x + NLM_W : j->pl->width, y1);
-}
-TILE_FUNCTIONS(nlm_band, nlm_band_body)
+BAND_FUNCTIONS(nlm_band, nlm_tile_body, struct nlm_job, NLM_W)
 
 /* src: sc interleaved channels, dst the same. */
 static mcrt_status nlm(struct pool *pl, const struct guide *g, const float *src, int sc, int r,
@@ -483,6 +487,9 @@ static void solve(double *M, int n, double *b)
 enum { SIDE = 2 * REG_R + 1, NW = SIDE * SIDE, NWP = (NW + LANES - 1) / LANES * LANES };
 enum { REG_W = 32 }; /* the regression's tiles: MC_TILE rows, REG_W columns */
 
+/* The regression's tiles across the image. */
+static int reg_tiles_across(const struct pool *pl) { return (pl->width + REG_W - 1) / REG_W; }
+
 /* Σ_o a_k[o]·col_b[o] for both bandwidths' a_0 and a_1 and nb <= DOT_BLOCK columns, into
  * out[k][b], each in LANES partial sums added in double at the end: the same operations in the
  * same order whatever vector width the compiler picks. The columns go together so that each a_k
@@ -531,27 +538,30 @@ struct reg_job {
     const float *const *feat;  /* nf planes, padded */
     int nf;
     const unsigned char *need; /* NULL: the lattice's pass; else the pixels of the second */
-    float **acc;               /* per tile: per bandwidth 4 planes (R, G, B, weight) of (T + 2R)²,
-                                  NULL for a tile without a fit */
+    float **acc;               /* per tile: per bandwidth 4 planes (R, G, B, weight) of the tile
+                                  and the windows' reach R around it, NULL for a tile without a
+                                  fit */
 };
 
 /* Every pixel's fit is evaluated over its whole window and the fits that cover a pixel are
  * averaged (collaborative filtering), so the fits of neighbouring pixels, whose windows nearly
  * coincide, say nearly the same there: fitting only the pixels of a lattice of spacing LATTICE
- * (both coordinates multiples of it) gives each pixel the fits of the lattice points within its window,
- * about (2R + 1)²/4 of them, at a quarter of the cost. A pixel whose lattice fits weigh little
- * where it is (a firefly, an edge's thin side: the weights follow the colour's patches) gets its
- * own fit in a second pass, as every pixel has in the full method: those whose weight summed
- * over the fits covering it is below COVER_MIN for either bandwidth (a fit's own pixel has
- * weight 1). Measured by make bench-denoise and callgrind: see the README's denoiser section. */
+ * (both coordinates multiples of it) gives each pixel the fits of the lattice points within its
+ * window, about (2R + 1)²/4 of them, at a quarter of the cost. A pixel whose lattice fits
+ * weigh little where it is (a firefly, an edge's thin side: the weights follow the colour's
+ * patches) gets its own fit in a second pass, as every pixel has in the full method: those
+ * whose weight summed over the fits covering it is below COVER_MIN for either bandwidth (a
+ * fit's own pixel has weight 1). Measured by make bench-denoise and callgrind: see the README's
+ * denoiser section. */
 enum { LATTICE = 2 };
 #define COVER_MIN 3.0
+
+static int on_lattice(int x, int y) { return x % LATTICE == 0 && y % LATTICE == 0; }
 
 /* Whether pixel (x, y) is fitted in this pass. */
 static int fitted(const struct reg_job *j, int x, int y)
 {
-    return j->need ? j->need[(size_t)y * (size_t)j->pl->width + (size_t)x]
-                   : x % LATTICE == 0 && y % LATTICE == 0;
+    return j->need ? j->need[(size_t)y * (size_t)j->pl->width + (size_t)x] : on_lattice(x, y);
 }
 
 /* One pixel's window, column by column (the columns of the design matrix: 1, the offset, and each
@@ -698,7 +708,7 @@ static MC_ALWAYS_INLINE void reg_tile_body(void *ctx, struct tile_worker *w, int
     int width = j->pl->width, tw = x1 - x0, th = y1 - y0;
     int aw = tw + 2 * R, dx, dy, x, y, c, a, o, k, i, nfit = 0;
     size_t np = (size_t)tw * th, l, npl = (size_t)aw * (size_t)(th + 2 * R);
-    size_t ti = (size_t)(y0 / MC_TILE) * (size_t)j->pl->ntx + (size_t)(x0 / REG_W);
+    size_t ti = (size_t)(y0 / MC_TILE) * (size_t)reg_tiles_across(j->pl) + (size_t)(x0 / REG_W);
     struct row_mask rows;
     int fit[MC_TILE * REG_W]; /* the fitted pixels, tile-local indices in row-major order */
     float *dist, *acc;
@@ -770,28 +780,18 @@ static MC_ALWAYS_INLINE void reg_tile_body(void *ctx, struct tile_worker *w, int
 
 /* A band of MC_TILE rows (run's bands), as tiles REG_W wide: wider than the runner's tiles, so
  * that less of the patches' and the windows' reach around a tile is computed and summed again. */
-static MC_ALWAYS_INLINE void reg_band_body(void *ctx, struct tile_worker *w, int x0, int y0,
-                                           int x1, int y1)
-{
-    struct reg_job *j = ctx;
-    int x;
-    (void)x0;
-    (void)x1;
-    for (x = 0; x < j->pl->width; x += REG_W)
-        reg_tile_body(ctx, w, x, y0, x + REG_W < j->pl->width ? x + REG_W : j->pl->width, y1);
-}
-TILE_FUNCTIONS(reg_band, reg_band_body)
+BAND_FUNCTIONS(reg_band, reg_tile_body, struct reg_job, REG_W)
 
 /* The tiles' overlapping sums of j->acc added into sum (per bandwidth k and channel c, R, G, B
  * and weight, a plane (k·4 + c) of the image's pixels), in tile order whatever the threads'
  * order was, and the tiles' sums freed. */
 static void merge_tiles(const struct pool *pl, float **tiles, double *sum)
 {
-    int nty = (pl->height + MC_TILE - 1) / MC_TILE, tx, ty, x, y, p;
+    int nty = (pl->height + MC_TILE - 1) / MC_TILE, ntx = reg_tiles_across(pl), tx, ty, x, y, p;
     size_t n = (size_t)pl->width * (size_t)pl->height;
     for (ty = 0; ty < nty; ty++)
-        for (tx = 0; tx < pl->ntx; tx++) {
-            float *acc = tiles[(size_t)ty * pl->ntx + tx];
+        for (tx = 0; tx < ntx; tx++) {
+            float *acc = tiles[(size_t)ty * ntx + tx];
             int x0 = tx * REG_W - REG_R, y0 = ty * MC_TILE - REG_R;
             int aw = (tx * REG_W + REG_W > pl->width ? pl->width - tx * REG_W : REG_W)
                      + 2 * REG_R;
@@ -811,7 +811,7 @@ static void merge_tiles(const struct pool *pl, float **tiles, double *sum)
                         o[x] += a[x];
                 }
             free(acc);
-            tiles[(size_t)ty * pl->ntx + tx] = NULL;
+            tiles[(size_t)ty * ntx + tx] = NULL;
         }
 }
 
@@ -833,7 +833,7 @@ static mcrt_status regress(struct pool *pl, const struct guide *g, const float *
     j.feat = feat;
     j.nf = nf;
     j.need = NULL;
-    j.acc = mc_calloc((size_t)pl->ntx * (size_t)nty, sizeof *j.acc);
+    j.acc = mc_calloc((size_t)reg_tiles_across(pl) * (size_t)nty, sizeof *j.acc);
     if (!j.acc || !sum || !need) {
         free(j.acc);
         free(sum);
@@ -844,8 +844,7 @@ static mcrt_status regress(struct pool *pl, const struct guide *g, const float *
     merge_tiles(pl, j.acc, sum);
     for (i = 0; i < n; i++) {
         int x = (int)(i % (size_t)pl->width), y = (int)(i / (size_t)pl->width);
-        need[i] = (x % LATTICE != 0 || y % LATTICE != 0)
-                  && (sum[3 * n + i] < COVER_MIN || sum[7 * n + i] < COVER_MIN);
+        need[i] = !on_lattice(x, y) && (sum[3 * n + i] < COVER_MIN || sum[7 * n + i] < COVER_MIN);
     }
     j.need = need;
     if (st == MCRT_OK)
@@ -956,7 +955,6 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
     pl.width = w;
     pl.height = h;
     pl.threads = threads;
-    pl.ntx = (w + REG_W - 1) / REG_W;
 
     /* The emission, taken out of the colour. */
     if (E[0]) {
