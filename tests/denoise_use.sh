@@ -13,7 +13,10 @@
 #     within 1% of the raw's (the issue's energy target) or, where the raw mean's own noise is
 #     larger (bsdf sampling's fireflies: 3 standard errors of it were 1.7% of the mean, and the
 #     shift measured 1.4, 1.1, -0.1, -1.3% for seeds 1 to 4, of both signs), within 3 standard
-#     errors of it, and its est_relmse below the raw's;
+#     errors of it, and its est_relmse below the raw's (with --adaptive below the raw image's
+#     true relMSE: there the raw estimate reads low, 0.48 to 0.77 of the truth over seeds 1 to
+#     6, as adaptive sampling gives fewer samples to the pixels whose halves happened to agree,
+#     where the denoised estimate, 0.6 to 1.5 of its truth, need not be below it);
 #     the raw layer of the --passes render is the image of the same render without --denoise,
 #     and `mcrt denoise` of the --time render's EXR (which holds the render state too) gives its
 #     image again.
@@ -92,10 +95,13 @@ mode() {
     # The shift allowed: 1% of the mean, or 3 standard errors of the raw image's mean when that
     # is larger (its pixels independent: sqrt(mean variance / (pixels x 3 channels))).
     tol=$(echo "$4 $7 $W $H" | awk '{ e = 3 * sqrt($2 / ($3 * $4 * 3)); print (e > 0.01 * $1 ? e : 0.01 * $1) }')
-    if echo "$@ $tol" | awk '{ exit !($1 < $2 && $3 < $8 && -$3 < $8 && $5 < $6) }'; then
-        ok "$name: denoised relMSE $1 < raw $2, mean shift $3 of $4 (at most $tol), est. $5 < raw $6"
+    # The estimate's bound: the raw image's estimate, or ($est_bound = true) its true relMSE.
+    bound=$6
+    [ "${est_bound:-}" = true ] && bound=$2
+    if echo "$@ $tol $bound" | awk '{ exit !($1 < $2 && $3 < $8 && -$3 < $8 && $5 < $9) }'; then
+        ok "$name: denoised relMSE $1 < raw $2, mean shift $3 of $4 (at most $tol), est. $5 < $bound (raw est. $6)"
     else
-        fail "$name" "denoised relMSE $1 vs raw $2, mean shift $3 of $4 (at most $tol), est. $5 vs raw $6"
+        fail "$name" "denoised relMSE $1 vs raw $2, mean shift $3 of $4 (at most $tol), est. $5 vs $bound (raw est. $6)"
     fi
 }
 # black W H: $tmp/black.pfm, a black W x H image, to read an image's mean as its bias against
@@ -123,7 +129,7 @@ if layer "$tmp/m.exr" raw "$tmp/m-raw.pfm" &&
 else
     fail "--denoise --passes 4" "its raw layer differs from the render without --denoise"
 fi
-mode "--denoise --adaptive" --spp 16 --adaptive
+est_bound=true mode "--denoise --adaptive" --spp 16 --adaptive
 # --time: the passes' count depends on the machine's speed, so the raw image is the EXR's own.
 if "$MCRT" --quiet --seed 1 --denoise --spp 4 --time 1 -o "$tmp/t.exr" "$tmp/c.mcrt" &&
     layer "$tmp/t.exr" raw "$tmp/t-raw.pfm" &&

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "core/alloc.h"
+#include "core/rng.h"
 #include "core/simd.h"
 #include "render/render.h"
 
@@ -446,7 +447,10 @@ static mcrt_status nlm(struct pool *pl, const struct guide *g, const float *src,
 
 /* ---- First-order regression (NFOR §5.2) ---- */
 
-/* Solve the normal equations M β = b (M: n×n symmetric, b: n×3) by an LDLᵀ factorisation that
+/* The channels regressed: the colour's three and the leverage probe (regress). */
+enum { REG_C = 4 };
+
+/* Solve the normal equations M β = b (M: n×n symmetric, b: n×REG_C) by an LDLᵀ factorisation that
  * drops the columns adding nothing to the ones before (a pivot below 1e-7 of its diagonal: a
  * feature constant over the window, or a copy of another), whose coefficients are then 0 -- the
  * basic least-squares solution a pivoted QR gives, at a fraction of the cost. */
@@ -470,15 +474,15 @@ static void solve(double *M, int n, double *b)
             M[i * n + j] = s / D[j];
         }
     }
-    for (c = 0; c < 3; c++) {
+    for (c = 0; c < REG_C; c++) {
         for (i = 0; i < n; i++)
             for (k = 0; k < i; k++)
-                b[i * 3 + c] -= M[i * n + k] * b[k * 3 + c];
+                b[i * REG_C + c] -= M[i * n + k] * b[k * REG_C + c];
         for (i = 0; i < n; i++)
-            b[i * 3 + c] = D[i] != 0.0 ? b[i * 3 + c] / D[i] : 0.0;
+            b[i * REG_C + c] = D[i] != 0.0 ? b[i * REG_C + c] / D[i] : 0.0;
         for (i = n - 1; i >= 0; i--)
             for (k = i + 1; k < n; k++)
-                b[i * 3 + c] -= M[k * n + i] * b[k * 3 + c];
+                b[i * REG_C + c] -= M[k * n + i] * b[k * REG_C + c];
     }
 }
 
@@ -534,11 +538,12 @@ static MC_ALWAYS_INLINE void dots(const float *a0, const float *a1, const float 
 struct reg_job {
     struct pool *pl;
     const struct guide *g;     /* with k = 1: the distances, to which each bandwidth k applies */
-    const float *img;          /* the colour regressed, padded (3 channels) */
+    const float *img;          /* the colour and the probe regressed, padded (REG_C channels) */
     const float *const *feat;  /* nf planes, padded */
     int nf;
     const unsigned char *need; /* NULL: the lattice's pass; else the pixels of the second */
-    float **acc;               /* per tile: per bandwidth 4 planes (R, G, B, weight) of the tile
+    float **acc;               /* per tile: per bandwidth REG_C + 1 planes (R, G, B, probe,
+                                  weight) of the tile
                                   and the windows' reach R around it, NULL for a tile without a
                                   fit */
 };
@@ -565,10 +570,11 @@ static int fitted(const struct reg_job *j, int x, int y)
 }
 
 /* One pixel's window, column by column (the columns of the design matrix: 1, the offset, and each
- * feature's difference from the pixel's own, so that the fit is centred on it), the colours and,
+ * feature's difference from the pixel's own, so that the fit is centred on it), the colours and
+ * the probe,
  * per bandwidth, the weights, the weighted columns and the fit. */
 struct window {
-    float x[MAX_DIM][NWP], y[3][NWP], w[2][NWP], wx[2][MAX_DIM][NWP], fit[2][3][NWP];
+    float x[MAX_DIM][NWP], y[REG_C][NWP], w[2][NWP], wx[2][MAX_DIM][NWP], fit[2][REG_C][NWP];
 };
 
 /* The columns every window shares: 1 and the offset, and 0 in the padding. */
@@ -612,9 +618,9 @@ static MC_ALWAYS_INLINE void window_fill(const struct reg_job *j, int x, int y, 
                 xa[i] = fabsf(diff) > FEATURE_EPS * fabsf(fp) ? diff : 0.0f;
             }
         }
-        for (c = 0; c < 3; c++)
+        for (c = 0; c < REG_C; c++)
             for (i = 0; i < SIDE; i++)
-                v->y[c][o + i] = j->img[(q + (size_t)i) * 3 + (size_t)c];
+                v->y[c][o + i] = j->img[(q + (size_t)i) * REG_C + (size_t)c];
         for (k = 0; k < 2; k++) {
             float *wk = v->w[k] + o;
             for (i = 0; i < SIDE; i++)
@@ -634,12 +640,12 @@ static MC_ALWAYS_INLINE void window_fill(const struct reg_job *j, int x, int y, 
 }
 
 /* The weighted least squares of the window v for both bandwidths: X^T W X into M[k] (nd × nd)
- * and X^T W Y into B[k] (nd × 3), for solve. Row a of both at once: its weighted column against
+ * and X^T W Y into B[k] (nd × REG_C), for solve. Row a of both at once: its weighted column against
  * the columns a..nd-1 and the colours, DOT_BLOCK at a time. */
 static MC_ALWAYS_INLINE void normal_equations(struct window *v, int nd, double M[2][MAX_DIM * MAX_DIM],
-                                           double B[2][MAX_DIM * 3])
+                                           double B[2][MAX_DIM * REG_C])
 {
-    const float *col[MAX_DIM + 3];
+    const float *col[MAX_DIM + REG_C];
     double r[2][DOT_BLOCK];
     int a, b, c, k, o, n, i;
     for (k = 0; k < 2; k++)
@@ -649,7 +655,7 @@ static MC_ALWAYS_INLINE void normal_equations(struct window *v, int nd, double M
     for (a = 0; a < nd; a++) {
         for (n = 0, b = a; b < nd; b++)
             col[n++] = v->x[b];
-        for (c = 0; c < 3; c++)
+        for (c = 0; c < REG_C; c++)
             col[n++] = v->y[c];
         for (i = 0; i < n; i += DOT_BLOCK) {
             const float *wa0 = v->wx[0][a], *wa1 = v->wx[1][a];
@@ -664,38 +670,42 @@ static MC_ALWAYS_INLINE void normal_equations(struct window *v, int nd, double M
                     if (a + b < nd)
                         M[k][a * nd + a + b] = M[k][(a + b) * nd + a] = r[k][b - i];
                     else
-                        B[k][a * 3 + b - (nd - a)] = r[k][b - i];
+                        B[k][a * REG_C + b - (nd - a)] = r[k][b - i];
                 }
         }
     }
 }
 
-/* Each bandwidth's local fit, coefficients beta[k] (nd × 3), evaluated over the window into
- * v->fit; the sums over the columns in column order, the six of a LANES-wide run spelt out so
+/* Each bandwidth's local fit, coefficients beta[k] (nd × REG_C), evaluated over the window into
+ * v->fit; the sums over the columns in column order, the eight of a LANES-wide run spelt out so
  * that they stay in registers. */
-static MC_ALWAYS_INLINE void fit_eval(struct window *v, int nd, float beta[2][MAX_DIM * 3])
+static MC_ALWAYS_INLINE void fit_eval(struct window *v, int nd, float beta[2][MAX_DIM * REG_C])
 {
     int o, a, l;
     for (o = 0; o < NWP; o += LANES) {
-        float f[6][LANES] = {{0.0f}};
+        float f[8][LANES] = {{0.0f}};
         for (a = 0; a < nd; a++) {
-            const float *xa = v->x[a] + o, *b0 = beta[0] + a * 3, *b1 = beta[1] + a * 3;
+            const float *xa = v->x[a] + o, *b0 = beta[0] + a * REG_C, *b1 = beta[1] + a * REG_C;
             for (l = 0; l < LANES; l++) {
                 f[0][l] += xa[l] * b0[0];
                 f[1][l] += xa[l] * b0[1];
                 f[2][l] += xa[l] * b0[2];
-                f[3][l] += xa[l] * b1[0];
-                f[4][l] += xa[l] * b1[1];
-                f[5][l] += xa[l] * b1[2];
+                f[3][l] += xa[l] * b0[3];
+                f[4][l] += xa[l] * b1[0];
+                f[5][l] += xa[l] * b1[1];
+                f[6][l] += xa[l] * b1[2];
+                f[7][l] += xa[l] * b1[3];
             }
         }
         for (l = 0; l < LANES; l++) {
             v->fit[0][0][o + l] = f[0][l];
             v->fit[0][1][o + l] = f[1][l];
             v->fit[0][2][o + l] = f[2][l];
-            v->fit[1][0][o + l] = f[3][l];
-            v->fit[1][1][o + l] = f[4][l];
-            v->fit[1][2][o + l] = f[5][l];
+            v->fit[0][3][o + l] = f[3][l];
+            v->fit[1][0][o + l] = f[4][l];
+            v->fit[1][1][o + l] = f[5][l];
+            v->fit[1][2][o + l] = f[6][l];
+            v->fit[1][3][o + l] = f[7][l];
         }
     }
 }
@@ -725,7 +735,7 @@ static MC_ALWAYS_INLINE void reg_tile_body(void *ctx, struct tile_worker *w, int
         return;
     row_mask_reach(&rows, th, j->g->f);
     dist = mc_malloc((np * NWP + np + scratch_floats(j->g, REG_W)) * sizeof *dist);
-    acc = mc_calloc(8 * npl, sizeof *acc);
+    acc = mc_calloc(2 * (REG_C + 1) * npl, sizeof *acc);
     v = mc_malloc(sizeof *v);
     if (!dist || !acc || !v) {
         j->pl->status = MCRT_ERR_NOMEM;
@@ -745,8 +755,8 @@ static MC_ALWAYS_INLINE void reg_tile_body(void *ctx, struct tile_worker *w, int
                 dist[(size_t)fit[i] * NWP + (size_t)o] = t[fit[i]];
         }
     for (i = 0; i < nfit; i++) {
-        double M[2][MAX_DIM * MAX_DIM], B[2][MAX_DIM * 3];
-        float beta[2][MAX_DIM * 3];
+        double M[2][MAX_DIM * MAX_DIM], B[2][MAX_DIM * REG_C];
+        float beta[2][MAX_DIM * REG_C];
         l = (size_t)fit[i];
         x = x0 + fit[i] % tw;
         y = y0 + fit[i] / tw;
@@ -754,7 +764,7 @@ static MC_ALWAYS_INLINE void reg_tile_body(void *ctx, struct tile_worker *w, int
         normal_equations(v, nd, M, B);
         for (k = 0; k < 2; k++) {
             solve(M[k], nd, B[k]);
-            for (a = 0; a < nd * 3; a++)
+            for (a = 0; a < nd * REG_C; a++)
                 beta[k][a] = (float)B[k][a];
         }
         /* The local fit evaluated over the window, weighted by the same weights (the
@@ -763,13 +773,13 @@ static MC_ALWAYS_INLINE void reg_tile_body(void *ctx, struct tile_worker *w, int
         for (k = 0; k < 2; k++) {
             const float *wk = v->w[k];
             for (o = 0, dy = -R; dy <= R; dy++, o += SIDE) {
-                float *t = acc + (size_t)k * 4 * npl + (size_t)(y - y0 + R + dy) * aw
-                           + (size_t)(x - x0);
-                for (c = 0; c < 3; c++)
+                float *t = acc + (size_t)k * (REG_C + 1) * npl
+                           + (size_t)(y - y0 + R + dy) * aw + (size_t)(x - x0);
+                for (c = 0; c < REG_C; c++)
                     for (dx = 0; dx < SIDE; dx++)
                         t[c * npl + (size_t)dx] += wk[o + dx] * v->fit[k][c][o + dx];
                 for (dx = 0; dx < SIDE; dx++)
-                    t[3 * npl + (size_t)dx] += wk[o + dx];
+                    t[REG_C * npl + (size_t)dx] += wk[o + dx];
             }
         }
     }
@@ -782,9 +792,9 @@ static MC_ALWAYS_INLINE void reg_tile_body(void *ctx, struct tile_worker *w, int
  * that less of the patches' and the windows' reach around a tile is computed and summed again. */
 BAND_FUNCTIONS(reg_band, reg_tile_body, struct reg_job, REG_W)
 
-/* The tiles' overlapping sums of j->acc added into sum (per bandwidth k and channel c, R, G, B
- * and weight, a plane (k·4 + c) of the image's pixels), in tile order whatever the threads'
- * order was, and the tiles' sums freed. */
+/* The tiles' overlapping sums of j->acc added into sum (per bandwidth k and channel c, R, G, B,
+ * probe and weight, a plane (k·(REG_C + 1) + c) of the image's pixels), in tile order whatever
+ * the threads' order was, and the tiles' sums freed. */
 static void merge_tiles(const struct pool *pl, float **tiles, double *sum)
 {
     int nty = (pl->height + MC_TILE - 1) / MC_TILE, ntx = reg_tiles_across(pl), tx, ty, x, y, p;
@@ -803,7 +813,7 @@ static void merge_tiles(const struct pool *pl, float **tiles, double *sum)
             size_t npl = (size_t)aw * (size_t)ah;
             if (!acc)
                 continue;
-            for (p = 0; p < 8; p++)
+            for (p = 0; p < 2 * (REG_C + 1); p++)
                 for (y = ya; y < yb; y++) {
                     const float *a = acc + (size_t)p * npl + (size_t)y * aw;
                     double *o = sum + (size_t)p * n + (size_t)(y0 + y) * pl->width + x0;
@@ -815,18 +825,34 @@ static void merge_tiles(const struct pool *pl, float **tiles, double *sum)
         }
 }
 
-/* The colour img (padded) regressed on the features feat (padded) with weights from guide g
- * (k = 1), for both bandwidths: out[0] for reg_k[0], out[1] for reg_k[1]. The lattice's fits,
- * then those of the pixels they cover too little (LATTICE). */
-static mcrt_status regress(struct pool *pl, const struct guide *g, const float *img,
-                           const float *const *feat, int nf, float *const out[2], mc_diag *d)
+/* The leverage probe at pixel i: a sign, +1 or -1 with probability 1/2 each, from a hash of i. */
+static float probe(size_t i) { return mc_hash64((uint64_t)i) >> 63 ? 1.0f : -1.0f; }
+
+/* The colour col (3 channels, not padded) regressed on the features feat (padded) with weights
+ * from guide g (k = 1), for both bandwidths: out[0] for reg_k[0], out[1] for reg_k[1]. The
+ * lattice's fits, then those of the pixels they cover too little (LATTICE).
+ *
+ * The result is linear in the colour: out[k] = L_k·col, each row of L_k the weights with which
+ * the fits covering a pixel combine the window's colours, all fixed by g and the features. The
+ * error estimate (mse_estimate) needs L_k's diagonal, the weight of a pixel's own colour in its
+ * result. It is estimated as Bekas, Kokiopoulou and Saad do ("An estimator for the diagonal of a
+ * matrix", Appl. Numer. Math. 57, 2007), from the same regression of a fourth channel, a probe b
+ * of independent random signs: E[b_i·(L b)_i] = Σ_j L_ij E[b_i b_j] = L_ii. Into lev[k], one
+ * plane each: unbiased, with a spread of (Σ_{j≠i} L_ij²)^½ per pixel, which sums of many pixels
+ * average out. A fourth column of the normal equations' right side costs far less than a
+ * second regression or each fit's own leverages (x_oᵀ M⁻¹ x_o for each window pixel). */
+static mcrt_status regress(struct pool *pl, const struct guide *g, const float *col,
+                           const float *const *feat, int nf, float *const out[2],
+                           float *const lev[2], mc_diag *d)
 {
     int nty = (pl->height + MC_TILE - 1) / MC_TILE, c, k;
     size_t i, n = (size_t)pl->width * (size_t)pl->height;
+    size_t np = (size_t)(pl->width + 2 * PAD) * (size_t)(pl->height + 2 * PAD);
     struct reg_job j;
     mcrt_status st;
     unsigned char *need = mc_malloc(n);
-    double *sum = mc_calloc(n * 8, sizeof *sum);
+    double *sum = mc_calloc(n * 2 * (REG_C + 1), sizeof *sum);
+    float *img = mc_malloc((np + n) * REG_C * sizeof *img), *in = img + np * REG_C;
     j.pl = pl;
     j.g = g;
     j.img = img;
@@ -834,30 +860,41 @@ static mcrt_status regress(struct pool *pl, const struct guide *g, const float *
     j.nf = nf;
     j.need = NULL;
     j.acc = mc_calloc((size_t)reg_tiles_across(pl) * (size_t)nty, sizeof *j.acc);
-    if (!j.acc || !sum || !need) {
+    if (!j.acc || !sum || !need || !img) {
         free(j.acc);
         free(sum);
         free(need);
+        free(img);
         return mc_fail(d, MCRT_ERR_NOMEM, "out of memory for the denoiser");
     }
+    for (i = 0; i < n; i++) {
+        for (c = 0; c < 3; c++)
+            in[i * REG_C + (size_t)c] = col[i * 3 + (size_t)c];
+        in[i * REG_C + 3] = probe(i);
+    }
+    pad_copy(in, REG_C, pl->width, pl->height, 1.0f, img);
     st = run(pl, 1, TILE_FN(reg_band), &j, d);
     merge_tiles(pl, j.acc, sum);
     for (i = 0; i < n; i++) {
         int x = (int)(i % (size_t)pl->width), y = (int)(i / (size_t)pl->width);
-        need[i] = !on_lattice(x, y) && (sum[3 * n + i] < COVER_MIN || sum[7 * n + i] < COVER_MIN);
+        need[i] = !on_lattice(x, y) && (sum[REG_C * n + i] < COVER_MIN
+                                        || sum[(2 * REG_C + 1) * n + i] < COVER_MIN);
     }
     j.need = need;
     if (st == MCRT_OK)
         st = run(pl, 1, TILE_FN(reg_band), &j, d);
     merge_tiles(pl, j.acc, sum);
     for (i = 0; i < n; i++)
-        for (k = 0; k < 2; k++)
+        for (k = 0; k < 2; k++) {
+            const double *s = sum + (size_t)k * (REG_C + 1) * n + i, wsum = s[REG_C * n];
             for (c = 0; c < 3; c++)
-                out[k][i * 3 + c] = (float)(sum[(size_t)(k * 4 + c) * n + i]
-                                            / sum[(size_t)(k * 4 + 3) * n + i]);
+                out[k][i * 3 + (size_t)c] = (float)(s[(size_t)c * n] / wsum);
+            lev[k][i] = (float)(s[3 * n] / wsum) * probe(i);
+        }
     free(j.acc);
     free(sum);
     free(need);
+    free(img);
     return st;
 }
 
@@ -907,25 +944,53 @@ static void box_mean(const float *v, int nc, int width, int height, int r, float
     }
 }
 
-/* MSE of the mean of candidates fa (filtered from B's guides) and fb, per pixel (nfor.h). */
+/* The MSE of D = (fa + fb)/2 per pixel and channel (nfor.h, step 4). fa is A regressed with B's
+ * guides, fa = L_a·A with L_a fixed by B and the features, so that with A = μ + n (the noise n
+ * independent of L_a, of variance Var(A) in each pixel, independent between pixels)
+ *     E[(A − fa)²] = Var(A) − 2·L_a,ii·Var(A) + MSE(fa),
+ * the middle term the covariance of A's noise with its own share of fa. Var(A) is estimated by
+ * the pixel's (A − B)²/2 (var_half), unbiased; L_a,ii by la (regress). In the covariance term,
+ * though, Var(A) must not come from B: where B has a firefly, B's patch matches nothing, A's
+ * regression leans on the pixel itself (la near 1) and (A − B)²/2 is B's firefly, so that their
+ * product counted B's firefly into A's error (cornell-spheres at 16 spp: 1.7 times the true
+ * error over 10 seeds). There (A − fb)² stands for Var(A): fb, B regressed with A's guides, is
+ * close to μ (E[(A − fb)²] = Var(A) + MSE(fb) − 2·Cov(A, fb), the last two a few percent of
+ * Var(A)) and is no firefly where B has one. fb alike; then
+ *     MSE(D) = [MSE(fa) + MSE(fb)]/2 − (fa − fb)²/4,
+ * exact from ((a + b)/2)² = (a² + b²)/2 − ((a − b)/2)². NFOR's own estimate, (B − fa)² − Var(B),
+ * leaves out the covariance of B with fa, which B's guides make large: 0.13-0.15 of the true
+ * error on the Cornell box at 16 and 64 spp (10 seeds); this one measured 0.78-1.09 there and
+ * 1.04-1.12 on cornell-spheres (the error of the colour without the lights seen directly). One
+ * image's estimate is noisy, though: each pixel's term is about the product of its halves'
+ * noises, whose spread is Var(A) where the error is a few percent of it (README). */
 static void mse_estimate(const float *A, const float *B, const float *fa, const float *fb,
-                         const float *var_half, size_t n3, float *out)
+                         const float *la, const float *lb, const float *var_half, size_t n3,
+                         float *out)
 {
     size_t i;
     for (i = 0; i < n3; i++)
-        out[i] = 0.5f * (sq(B[i] - fa[i]) - var_half[i] + sq(A[i] - fb[i]) - var_half[i])
+        out[i] = 0.5f * (sq(A[i] - fa[i]) - var_half[i] + 2.0f * sq(A[i] - fb[i]) * la[i]
+                         + sq(B[i] - fb[i]) - var_half[i] + 2.0f * sq(B[i] - fa[i]) * lb[i])
                  - 0.25f * sq(fa[i] - fb[i]);
 }
 
 mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb, float *mse,
                             mc_diag *d)
 {
-    int w = in->width, h = in->height, nf = in->nfeatures, f, half, k;
+    int w = in->width, h = in->height, nf = in->nfeatures, f, half;
     size_t n = (size_t)w * (size_t)h, n3 = n * 3, i;
     const float *A = in->color[0], *B = in->color[1];
     const float *const *E = in->emission;
     /* One block of floats: 3-channel images, then feature planes. */
-    enum { VAR, VARS, VARG, MEAN, CAND, MSE0 = CAND + 4, MSE1, TMP, SEL, CA, CB, NIMG };
+    enum {
+        VAR, VARS, VARG, MEAN,
+        CAND,                    /* A's first candidate, B's, A's second, B's */
+        ERR = CAND + 4,          /* 4 images: the error maps' differences, then the results */
+        SMOOTH = ERR + 4,        /* 2: the differences smoothed */
+        SEL = SMOOTH + 2,        /* 2: the choices, 6 channels */
+        LEV = SEL + 2,           /* 2: the four candidates' leverage planes */
+        TMP = LEV + 2, CA, CB, NIMG
+    };
     /* Then the padded guides (pad_copy), 3 channels each: the halves, the variance of a half and
      * of the mean, the mean. */
     enum { PA, PB, PVAR, PVARM, PMEAN, NPAD };
@@ -1018,7 +1083,7 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
     g.each = 0;
 
     /* 2. Each half regressed on the other half's features with the other half's weights, for
-     * two bandwidths; 3. their errors. */
+     * two bandwidths, with the leverages of the results (regress); 3. the choice between them. */
     pad_copy(img[VARG], 3, w, h, 1.0f, pad[PVAR]);
     pad_copy(img[VARS], 3, w, h, 0.5f, pad[PVARM]);
     pad_copy(img[MEAN], 3, w, h, 1.0f, pad[PMEAN]);
@@ -1030,43 +1095,60 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
     {
         float *const ca[2] = {img[CAND], img[CAND + 2]}, *const cb[2] = {img[CAND + 1],
                                                                           img[CAND + 3]};
-        st = regress(&pl, &g, pad[PA], cpre[1], nf, ca, d);
+        float *const la[2] = {img[LEV], img[LEV] + n}, *const lb[2] = {img[LEV] + 2 * n,
+                                                                       img[LEV] + 3 * n};
+        st = regress(&pl, &g, A, cpre[1], nf, ca, la, d);
         g.img = pad[PA];
         if (st == MCRT_OK)
-            st = regress(&pl, &g, pad[PB], cpre[0], nf, cb, d);
+            st = regress(&pl, &g, B, cpre[0], nf, cb, lb, d);
     }
     if (st == MCRT_OK) {
-        /* Both error maps, interleaved (6 channels: the first candidate's, the second's, in
-         * TMP and SEL), smoothed in one pass by NL-means on the mean image, whose variance is
-         * half a half's, into MSE0 and MSE1 (the same interleaving). */
-        float *both = img[TMP], *sm = img[MSE0];
-        for (k = 0; k < 2; k++) {
-            mse_estimate(A, B, img[CAND + 2 * k], img[CAND + 2 * k + 1], img[VAR], n3, img[MSE1]);
+        /* Each half's candidates are chosen between by their errors estimated from the other
+         * half alone (NFOR §5.3): E[(B − Â_k)²] = MSE(Â_k) + Var(B) up to the covariance of B
+         * and Â_k, the same for both k. Not by the estimate of step 4: its terms (A − Â_k)² are
+         * the very ones it sums, so that a choice by them would pick, pixel by pixel, the
+         * candidate whose error A's noise happens to hide, and the estimate of the result would
+         * read low (on the Cornell box at 16 spp, 0.53 of the truth over 10 seeds, against
+         * 0.71 chosen this way). Only the sign of the difference of the two candidates' errors
+         * matters, and NL-means, a weighted mean, smooths a difference as it does each term: the
+         * differences, second candidate's error minus first's (6 channels, interleaved: A's, then
+         * B's), are smoothed in one pass by NL-means on the mean image, whose variance is half a
+         * half's; the choices, 0 for the first candidate and 1 for the second, are smoothed the
+         * same way into SEL. */
+        float *diff = img[ERR], *sm = img[SMOOTH];
+        for (half = 0; half < 2; half++) {
+            const float *other = half ? A : B, *c0 = img[CAND + half], *c1 = img[CAND + 2 + half];
             for (i = 0; i < n3; i++)
-                both[i / 3 * 6 + (size_t)k * 3 + i % 3] = img[MSE1][i];
+                diff[i / 3 * 6 + (size_t)(3 * half) + i % 3] = sq(other[i] - c1[i])
+                                                               - sq(other[i] - c0[i]);
         }
         g.img = pad[PMEAN];
         g.var = pad[PVARM];
         g.f = MAP_F;
         g.k = MAP_K;
-        st = nlm(&pl, &g, both, 6, MAP_R, sm, d);
-        /* The selection map, 0 for the first candidate, 1 for the second, smoothed the same
-         * way, blends them per pixel and channel. */
-        for (i = 0; st == MCRT_OK && i < n3; i++)
-            img[TMP][i] = sm[i / 3 * 6 + i % 3] < sm[i / 3 * 6 + 3 + i % 3] ? 0.0f : 1.0f;
+        st = nlm(&pl, &g, diff, 6, MAP_R, sm, d);
+        for (i = 0; st == MCRT_OK && i < 2 * n3; i++)
+            diff[i] = sm[i] > 0.0f ? 0.0f : 1.0f;
         if (st == MCRT_OK)
-            st = nlm(&pl, &g, img[TMP], 3, MAP_R, img[SEL], d);
+            st = nlm(&pl, &g, diff, 6, MAP_R, img[SEL], d);
     }
     if (st == MCRT_OK) {
-        float *fa = img[MSE0], *fb = img[MSE1]; /* reused for the blended halves */
+        /* Each half's choice blends its candidates and their leverages per pixel and channel
+         * (reusing ERR); the result is the mean of the halves. */
+        float *fa = img[ERR], *fb = img[ERR + 1], *la = img[ERR + 2], *lb = img[ERR + 3];
         for (i = 0; i < n3; i++) {
-            float s = img[SEL][i];
-            fa[i] = img[CAND][i] + s * (img[CAND + 2][i] - img[CAND][i]);
-            fb[i] = img[CAND + 1][i] + s * (img[CAND + 3][i] - img[CAND + 1][i]);
+            size_t p = i / 3;
+            float sa = img[SEL][p * 6 + i % 3], sb = img[SEL][p * 6 + 3 + i % 3];
+            const float *l = img[LEV];
+            fa[i] = img[CAND][i] + sa * (img[CAND + 2][i] - img[CAND][i]);
+            fb[i] = img[CAND + 1][i] + sb * (img[CAND + 3][i] - img[CAND + 1][i]);
+            la[i] = l[p] + sa * (l[n + p] - l[p]);
+            lb[i] = l[2 * n + p] + sb * (l[3 * n + p] - l[2 * n + p]);
             rgb[i] = 0.5f * (fa[i] + fb[i]);
         }
+        /* 4. */
         if (mse)
-            mse_estimate(A, B, fa, fb, img[VAR], n3, mse);
+            mse_estimate(A, B, fa, fb, la, lb, img[VAR], n3, mse);
         /* The emission back, unfiltered, and its variance: its error and the rest's add, as
          * the rest's filter never sees it. */
         for (i = 0; E[0] && i < n3; i++) {

@@ -13,14 +13,19 @@
  *      local fit is evaluated over its whole window and the fits averaged by their weights
  *      (collaborative filtering, §5.2). NFOR fits at every pixel; here the pixels of a lattice
  *      of spacing 2, and then each pixel those fits cover too little (nfor.c, LATTICE);
- *   3. each candidate's error is estimated from the halves (§5.3): Â, filtered from B's guides,
- *      has E[(B − Â)²] ≈ MSE(Â) + Var(B), so that the mean D = (Â + B̂)/2 has
- *          MSE(D) ≈ ½[(B − Â)² − Var(B) + (A − B̂)² − Var(A)] − ¼(Â − B̂)²,
- *      the last term exact from ((a + b)/2)² = (a² + b²)/2 − ((a − b)/2)²; the error maps and the
- *      choice between the candidates are smoothed by NL-means and the candidates blended per
- *      pixel by that choice;
- *   4. the same estimate of the blended result is returned per pixel: summed over an image, the
- *      denoised image's error without a reference.
+ *   3. each half's two candidates are blended per pixel by a choice between them, made from
+ *      their errors as the other half sees them (§5.3): Â_k, filtered from B's guides, has
+ *      E[(B − Â_k)²] ≈ MSE(Â_k) + Var(B); the maps of those errors and the choice are smoothed
+ *      by NL-means. Each half chooses apart, so that A's choice does not follow A's noise;
+ *   4. the blended result's error is estimated per pixel: Â = L·A, a combination of A's pixels
+ *      with weights L fixed by B's guides, has E[(A − Â)²] = Var(A)(1 − 2·L_ii) + MSE(Â), L_ii
+ *      estimated by regressing a probe of random signs along with the colour, so that
+ *          MSE(D) ≈ ½[(A − Â)² − Var(A)(1 − 2ℓ_A) + (B − B̂)² − Var(B)(1 − 2ℓ_B)] − ¼(Â − B̂)²
+ *      for the mean D = (Â + B̂)/2, the last term exact from ((a + b)/2)² = (a² + b²)/2 −
+ *      ((a − b)/2)² and Var(A) the pixel's (A − B)²/2; summed over an image, the denoised
+ *      image's error without a reference. NFOR's own form, (B − Â)² − Var(B), leaves out the
+ *      covariance of B and Â that B's guides create, and read 0.13-0.15 of the true error on the
+ *      Cornell box (nfor.c, mse_estimate).
  * NFOR's second pass (§5.4) is left out: it would need its own error estimate.
  *
  * An optional emission per half (the light emitted towards the camera by the first surfaces,

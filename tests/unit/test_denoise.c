@@ -2,7 +2,8 @@
  * known: a true image T, and halves A = T + noise and B = T + noise of independent Gaussian noise
  * of standard deviation SIGMA, with noise-free or noisy features. Checks: a flat image stays flat
  * and keeps its mean, a step edge and a one-pixel bright line keep their contrast, the estimated
- * error is within a factor 2 of the true one, and the result is the same for 1, 2 and 3 threads.
+ * error is unbiased and within a factor 2 of the true one over 24 noise seeds, and the result is
+ * the same for 1, 2 and 3 threads.
  * Each tolerance is derived from the noise, next to its check. With an argument FILE it also
  * writes the flat case's result there, so that tests/denoise.sh can compare the bits of the SSE2
  * copy (test_denoise_sse) and the AVX2 one. */
@@ -145,12 +146,39 @@ int main(int argc, char **argv)
                 sum += b.rgb[(y * W + x) * 3 + i];
         T_NEAR(sum / (3 * H), x < W / 2 ? 0.2 : 0.8, 0.03, "step: column %d", x);
     }
-    /* The estimated relMSE within a factor 2 of the truth (the target). */
-    est = relmse(&b, 1);
-    tru = relmse(&b, 0);
-    T_NOTE("step: relMSE raw %.4g, denoised true %.4g, estimated %.4g",
-           SIGMA * SIGMA / 2 * (0.5 / (0.04 + 0.01) + 0.5 / (0.64 + 0.01)), tru, est);
-    T_CHECK(est > tru / 2 && est < tru * 2, "step: estimated %.4g, true %.4g", est, tru);
+    /* The error estimate (nfor.h, step 4) against the truth. It is unbiased for this noise,
+     * Gaussian and independent between pixels, but one image's estimate is noisy: each pixel's
+     * term is about n_A·n_B, the product of its halves' noises, of standard deviation Var(half),
+     * and at this reduction (the raw image's relMSE 0.054, the denoised one's about 0.0005) the
+     * estimate of one image spreads by about three times the truth. So the check is over 24
+     * noise seeds: the mean of est − true within 3 standard errors of 0 (the spread measured over
+     * the seeds), and the mean estimate within the issue's factor 2 of the mean truth (NFOR's own
+     * estimate, which leaves out the covariance of a half with the other's filtered result,
+     * measured 0.2 of the truth here). */
+    {
+        enum { SEEDS = 24 };
+        double d[SEEDS], dm = 0.0, dv = 0.0, em = 0.0, tm = 0.0;
+        int s;
+        for (s = 0; s < SEEDS; s++) {
+            make(&b, f0, 0.0, 100 + (uint64_t)s);
+            T_CHECK(run(&b, 2) == MCRT_OK, "denoise");
+            est = relmse(&b, 1);
+            tru = relmse(&b, 0);
+            d[s] = est - tru;
+            dm += d[s] / SEEDS;
+            em += est / SEEDS;
+            tm += tru / SEEDS;
+        }
+        for (s = 0; s < SEEDS; s++)
+            dv += (d[s] - dm) * (d[s] - dm) / (SEEDS - 1);
+        T_NOTE("step: relMSE raw %.4g, denoised true %.4g, estimated %.4g (means of %d seeds; "
+               "est - true %.3g, standard error %.3g)",
+               SIGMA * SIGMA / 2 * (0.5 / (0.04 + 0.01) + 0.5 / (0.64 + 0.01)), tm, em, SEEDS, dm,
+               sqrt(dv / SEEDS));
+        T_CHECK(fabs(dm) < 3.0 * sqrt(dv / SEEDS), "step: est - true %.3g, standard error %.3g",
+                dm, sqrt(dv / SEEDS));
+        T_CHECK(em > tm / 2 && em < tm * 2, "step: estimated %.4g, true %.4g", em, tm);
+    }
 
     /* A one-pixel bright line, 5 on 0.5, at y = 20, marked by a noisy feature, its own noise
      * (0.05 per half) prefiltered. The line's mean over W·3 values has the raw standard error
