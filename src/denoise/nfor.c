@@ -9,6 +9,7 @@
 #include "core/alloc.h"
 #include "core/rng.h"
 #include "core/simd.h"
+#include "denoise/light_edge.h"
 #include "render/render.h"
 
 /* NFOR's parameters (Bitterli et al. 2016, §5; Tungsten's defaults): patch radius F, window
@@ -989,7 +990,7 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
         SMOOTH = ERR + 4,        /* 2: the differences smoothed */
         SEL = SMOOTH + 2,        /* 2: the choices, 6 channels */
         LEV = SEL + 2,           /* 2: the four candidates' leverage planes */
-        TMP = LEV + 2, CA, CB, NIMG
+        TMP = LEV + 2, CA, CB, EM, EMV, NIMG
     };
     /* Then the padded guides (pad_copy), 3 channels each: the halves, the variance of a half and
      * of the mean, the mean. */
@@ -1149,12 +1150,14 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
         /* 4. */
         if (mse)
             mse_estimate(A, B, fa, fb, la, lb, img[VAR], n3, mse);
-        /* The emission back, unfiltered, and its variance: its error and the rest's add, as
-         * the rest's filter never sees it. */
-        for (i = 0; E[0] && i < n3; i++) {
-            rgb[i] += 0.5f * (E[0][i] + E[1][i]);
+        /* The emission back, fitted along the lights' edges (light_edge.h), and its variance:
+         * its error and the rest's add, as the rest's filter never sees it. */
+        if (E[0] && mc_light_edge_fit(E, in->emission_var, w, h, img[EM], img[EMV]) != 0)
+            st = mc_fail(d, MCRT_ERR_NOMEM, "out of memory for the denoiser (%dx%d)", w, h);
+        for (i = 0; E[0] && st == MCRT_OK && i < n3; i++) {
+            rgb[i] += img[EM][i];
             if (mse)
-                mse[i] += in->emission_var[i];
+                mse[i] += img[EMV][i];
         }
     }
     free(buf);

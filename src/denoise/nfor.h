@@ -32,10 +32,12 @@
  * render/aov.h) is the part of the colour that needs no regression: it is taken out of each half
  * before step 2, so that a light seen directly cannot bleed into its neighbours (the first-order
  * regression alone put 77% of its error in the 20 pixels around the Cornell box's light,
- * estimators-anchor.md §2), and added back unfiltered after, its variance added to the error
- * estimate. That variance comes with it, from the samples rather than the halves: its noise is
- * a light edge's coverage by a pixel's rays, which the two halves of a pixel on the light's
- * corner often agree on by chance (one degree of freedom), when its samples show it clearly.
+ * estimators-anchor.md §2), and added back after, fitted along the lights' edges
+ * (light_edge.h), its variance added to the error estimate. That variance comes with it, from
+ * the samples rather than the halves: its noise is a light edge's coverage by a pixel's rays,
+ * which the two halves of a pixel on the light's corner often agree on by chance (one degree of
+ * freedom), when its samples show it clearly; the halves set only its scale, pooled over all the
+ * pixels of the lights' edges.
  *
  * Tiles of the image run on the render's thread pool (render/tiles.h); every tile writes only
  * its own buffers, and overlapping contributions are summed in tile order afterwards, so the
