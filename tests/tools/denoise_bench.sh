@@ -2,9 +2,13 @@
 # denoise_bench.sh: what `mcrt render --denoise` gains (issue 16), a benchmark for the README and
 # the notes (make bench-denoise), not a test. For scenes/cornell.mcrt and scenes/cornell-spheres
 # .mcrt with their films set to $SIZE² (default 160, the size of the OIDN figures in
-# estimators-anchor.md §2), at 16 and 64 spp and for each seed of $SEEDS (default "1 2"): the
+# estimators-anchor.md §2), at 16 and 64 spp and for each seed of $SEEDS (default 1 to 10: one
+# render's figures spread, the Cornell box's gain at 16 spp from 12.7 to 21.9 times over those
+# ten, cornell-spheres' estimate from 0 to 2.7 times its truth, so that two seeds said little
+# about the mean, and the first run renders the 40 inputs in about a minute): the
 # true relMSE of the raw and of the denoised image, the reduction, the denoised image's estimated
-# relMSE over its true one and the shift of the mean (denoised minus raw); then the equal-samples
+# relMSE over its true one (the means', and the range of the seeds' own) and the shift of the
+# mean (denoised minus raw); then the equal-samples
 # ratio (raw 64 spp over denoised 16 spp, true relMSE) and the seconds the denoiser takes for a
 # 512² image on $THREADS threads (default 2; the median of 3 runs). $MCRT is the binary (default
 # build/mcrt), $EXR_AVERAGE tests/tools/exr_average's (default build/tests/exr_average).
@@ -27,7 +31,7 @@ EXR_AVERAGE=${EXR_AVERAGE:-build/tests/exr_average}
 SIZE=${SIZE:-160}
 REF_SPP=${REF_SPP:-4096}
 CAUSTIC_REF_SPP=${CAUSTIC_REF_SPP:-8192}
-SEEDS=${SEEDS:-1 2}
+SEEDS=${SEEDS:-1 2 3 4 5 6 7 8 9 10}
 THREADS=${THREADS:-2}
 CACHE=${CACHE:-/tmp/mcrt-denoise-bench}
 mkdir -p "$CACHE" || exit 2
@@ -50,8 +54,8 @@ render() {
         mv "$out.part.${out##*.}" "$out"
 }
 
-printf '%-16s %4s %10s %10s %7s %15s %8s %9s\n' scene spp raw denoised gain "gain per seed" \
-    est/true d_mean
+printf '%-16s %4s %10s %10s %7s %15s %8s %13s %9s\n' scene spp raw denoised gain "gain per seed" \
+    est/true "per seed" d_mean
 for name in cornell cornell-spheres; do
     scene=$CACHE/$name-$SIZE.mcrt
     film "scenes/$name.mcrt" "$SIZE" >"$tmp/s.mcrt"
@@ -81,9 +85,10 @@ for name in cornell cornell-spheres; do
         printf '%s' "$rows" | awk -v name="$name" -v spp="$spp" -v e="$ref_err" '{
             raw = $1 - e; den = $3 - e; n++
             sraw += raw; sden += den; sest += $5; sd += $4 - $2
-            g = raw / den; gmin = n == 1 || g < gmin ? g : gmin; gmax = n == 1 || g > gmax ? g : gmax }
-            END { printf "%-16s %4d %10.3e %10.3e %6.1fx %6.1f-%5.1fx %8.2f %+9.2e\n", name, spp,
-                sraw / n, sden / n, sraw / sden, gmin, gmax, sest / sden, sd / n
+            g = raw / den; gmin = n == 1 || g < gmin ? g : gmin; gmax = n == 1 || g > gmax ? g : gmax
+            r = $5 / den; rmin = n == 1 || r < rmin ? r : rmin; rmax = n == 1 || r > rmax ? r : rmax }
+            END { printf "%-16s %4d %10.3e %10.3e %6.1fx %6.1f-%5.1fx %8.2f %6.2f-%5.2f %+9.2e\n", name,
+                spp, sraw / n, sden / n, sraw / sden, gmin, gmax, sest / sden, rmin, rmax, sd / n
                 print sraw / n, sden / n > "'"$tmp/mean-$spp"'" }'
     done
     read -r raw64 den64 <"$tmp/mean-64"
