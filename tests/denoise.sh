@@ -66,7 +66,7 @@ energy() {
 
 # The Cornell box: the factor 2, on the 160² film of its measurements (estimators-anchor.md
 # §2), the mean over seeds 1-3: one render's estimate spreads widely (make bench-denoise, ten
-# seeds: 0.77 of the truth in the mean at 16 spp, 0.30 to 1.14 seed by seed; the README's
+# seeds: 0.77 of the truth in the mean at 16 spp, 0.30 to 1.15 seed by seed; the README's
 # denoiser section says why).
 if error cornell 160 1 2 3; then
     if echo "$est $tru" | awk '{ exit !($1 > $2 / 2 && $1 < $2 * 2) }'; then
