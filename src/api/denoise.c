@@ -157,6 +157,19 @@ mcrt_status mcrt_denoise_file(const char *in, const char *out, int threads, doub
     /* The layers of one EXR share its data window: one size. */
     w = im[0].width;
     h = im[0].height;
+    /* mcrt writes no value that is not finite (a NaN or infinite sample is never added, film.h);
+     * one in the input would spread over every window that holds it. */
+    for (i = 0; i < 3 + 2 * DENOISE_LAYERS; i++) {
+        size_t j, n3 = (size_t)w * (size_t)h * 3;
+        for (j = 0; j < n3 && isfinite(im[i].rgb[j]); j++)
+            ;
+        if (j < n3) {
+            st = mc_fail(&d, MCRT_ERR_INVALID, "%s: layer %s, pixel (%d, %d): %g is not a finite "
+                                               "number", in, name[i], (int)(j / 3 % (size_t)w),
+                         (int)(j / 3 / (size_t)w), (double)im[i].rgb[j]);
+            goto done;
+        }
+    }
     for (k = 0; k < 2; k++) {
         halves[k] = im[k].rgb;
         for (i = 0; i < DENOISE_LAYERS; i++)

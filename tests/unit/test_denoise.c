@@ -2,8 +2,8 @@
  * known: a true image T, and halves A = T + noise and B = T + noise of independent Gaussian noise
  * of standard deviation SIGMA, with noise-free or noisy features. Checks: a flat image stays flat
  * and keeps its mean, a step edge and a one-pixel bright line keep their contrast, the estimated
- * error is unbiased and within a factor 2 of the true one over 24 noise seeds, and the result is
- * the same for 1, 2 and 3 threads.
+ * error is unbiased and within a factor 2 of the true one over 24 noise seeds, the result is the
+ * same for 1, 2 and 3 threads, and mcrt_denoise_file refuses an input layer holding a NaN.
  * Each tolerance is derived from the noise, next to its check. With an argument FILE it also
  * writes the flat case's result there, so that tests/denoise.sh can compare the bits of the SSE2
  * copy (test_denoise_sse) and the AVX2 one. */
@@ -12,8 +12,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <unistd.h>
+
 #include "core/rng.h"
 #include "denoise/nfor.h"
+#include "io/image.h"
+#include "mcrt.h"
 #include "t.h"
 
 enum { W = 64, H = 48, N = W * H };
@@ -83,6 +87,59 @@ static double relmse(const struct bufs *b, int est)
         s += (est ? b->mse[i] : (b->rgb[i] - b->truth[i]) * (b->rgb[i] - b->truth[i]))
              / (b->truth[i] * b->truth[i] + 0.01);
     return s / (N * 3);
+}
+
+/* mcrt_denoise_file refuses an input with a value that is not finite: exit status 2 in mcrt
+ * denoise (MCRT_ERR_INVALID), a message naming the layer and the pixel, the output untouched.
+ * The same file without it denoises. */
+static void not_finite_input(void)
+{
+    static const char *const names[] = {"A", "B", "albedo.A", "albedo.B", "normal.A", "normal.B",
+                                        "depth.A", "depth.B", "emission.A", "emission.B",
+                                        "emission.var"};
+    enum { LW = 8, LH = 6, NL = sizeof names / sizeof names[0] };
+    static float planes[NL][LW * LH * 3];
+    struct image_layer layers[NL];
+    char dir[] = "/tmp/test_denoise.XXXXXX", in[64], out[64], err[256], kept[8] = "";
+    mcrt_status st;
+    mc_diag d;
+    FILE *f;
+    int l, i;
+    if (!mc_image_supported("exr")) {
+        T_SKIP("the denoiser's EXR input: built without OpenEXR");
+        return;
+    }
+    if (!mkdtemp(dir)) {
+        T_CHECK(0, "mkdtemp");
+        return;
+    }
+    snprintf(in, sizeof in, "%s/in.exr", dir);
+    snprintf(out, sizeof out, "%s/out.exr", dir);
+    for (l = 0; l < NL; l++) {
+        for (i = 0; i < LW * LH * 3; i++)
+            planes[l][i] = l < 2 ? 0.5f + 0.1f * (float)l : l == NL - 1 ? 0.0f : 0.3f;
+        layers[l].name = names[l];
+        layers[l].rgb = planes[l];
+    }
+    T_CHECK(mc_image_write_layers(in, layers, NL, LW, LH, &d) == MCRT_OK, "write: %s", d.msg);
+    st = mcrt_denoise_file(in, out, 1, NULL, NULL, err, sizeof err);
+    T_CHECK(st == MCRT_OK, "a finite input denoises: %s", err);
+    planes[5][3 * (2 * LW + 3) + 1] = NAN; /* normal.B, pixel (3, 2), green */
+    T_CHECK(mc_image_write_layers(in, layers, NL, LW, LH, &d) == MCRT_OK, "write: %s", d.msg);
+    f = fopen(out, "w");
+    T_CHECK(f && fputs("keep", f) >= 0 && fclose(f) == 0, "writing %s", out);
+    st = mcrt_denoise_file(in, out, 1, NULL, NULL, err, sizeof err);
+    f = fopen(out, "r");
+    T_CHECK(f && fgets(kept, sizeof kept, f), "reading %s", out);
+    if (f)
+        fclose(f);
+    T_CHECK(st == MCRT_ERR_INVALID && strstr(err, "layer normal.B, pixel (3, 2)") &&
+                strcmp(kept, "keep") == 0,
+            "a NaN in normal.B: status %d, '%s', the output '%s'", (int)st, err, kept);
+    T_NOTE("a NaN in the input: '%s'", err);
+    remove(in);
+    remove(out);
+    rmdir(dir);
 }
 
 int main(int argc, char **argv)
@@ -202,5 +259,6 @@ int main(int argc, char **argv)
     for (i = 0; i < N * 3 && isfinite(b.rgb[i]); i++)
         ;
     T_CHECK(i == N * 3, "no NaN");
+    not_finite_input();
     return t_done();
 }
