@@ -6,7 +6,7 @@
 #                   the last line is "N passed, N failed, N skipped"
 #   make check      the tests under AddressSanitizer + UndefinedBehaviorSanitizer (build-san/)
 #   make tsan       a multi-threaded render of every scene under ThreadSanitizer (build-tsan/)
-#   make fuzz       libFuzzer (clang) on the scene parser and the OBJ and MTL readers, FUZZ_TIME s each (build-fuzz/)
+#   make fuzz       libFuzzer (clang) on the scene parser, the OBJ and MTL readers and the image readers, FUZZ_TIME s each (build-fuzz/)
 #   make bench      BVH, path-tracer and photon-mapping throughput, mcrt-mpi's speed-up, and the
 #                   efficiency against Mitsuba 3 (make bench-mitsuba alone; not a test)
 #   make bench-error every sampler's error estimate against the truth on every scene, and the
@@ -214,7 +214,7 @@ run: setup
 
 test: setup
 	@$(MAKE) --no-print-directory test-build
-	@O=$(O) CC="$(CC)" LDFLAGS="$(LDFLAGS)" JOBS="$(JOBS)" sh tests/run.sh
+	@O=$(O) CC="$(CC)" LDFLAGS="$(LDFLAGS)" LDLIBS="$(LDLIBS)" JOBS="$(JOBS)" sh tests/run.sh
 
 test-build: all $(UNIT_BIN) $(TOOL_BIN)
 
@@ -249,17 +249,21 @@ FUZZ_TIME ?= 600
 FUZZ_SAN   = -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 fuzz:
 	@$(MAKE) --no-print-directory O=build-fuzz SETUP=0 CC=clang OPT="-O1 -g -fsanitize=fuzzer-no-link $(FUZZ_SAN)" \
-	  LDFLAGS="$(FUZZ_SAN)" build-fuzz/fuzz/fuzz_scene build-fuzz/fuzz/fuzz_obj build-fuzz/fuzz/fuzz_mtl
-	@mkdir -p build-fuzz/corpus_scene build-fuzz/corpus_obj build-fuzz/corpus_mtl
+	  LDFLAGS="$(FUZZ_SAN)" build-fuzz/fuzz/fuzz_scene build-fuzz/fuzz/fuzz_obj build-fuzz/fuzz/fuzz_mtl \
+	  build-fuzz/fuzz/fuzz_image
+	@mkdir -p build-fuzz/corpus_scene build-fuzz/corpus_obj build-fuzz/corpus_mtl build-fuzz/corpus_image
 	build-fuzz/fuzz/fuzz_scene -max_total_time=$(FUZZ_TIME) -artifact_prefix=build-fuzz/scene- \
 	  build-fuzz/corpus_scene tests/fuzz/corpus_scene > build-fuzz/fuzz_scene.log 2>&1 & p1=$$!; \
 	build-fuzz/fuzz/fuzz_mtl -max_total_time=$(FUZZ_TIME) -artifact_prefix=build-fuzz/mtl- \
 	  build-fuzz/corpus_mtl tests/fuzz/corpus_mtl > build-fuzz/fuzz_mtl.log 2>&1 & p3=$$!; \
+	build-fuzz/fuzz/fuzz_image -max_total_time=$(FUZZ_TIME) -artifact_prefix=build-fuzz/image- \
+	  build-fuzz/corpus_image tests/fuzz/corpus_image > build-fuzz/fuzz_image.log 2>&1 & p4=$$!; \
 	build-fuzz/fuzz/fuzz_obj -max_total_time=$(FUZZ_TIME) -artifact_prefix=build-fuzz/obj- \
 	  build-fuzz/corpus_obj tests/fuzz/corpus_obj > build-fuzz/fuzz_obj.log 2>&1; s2=$$?; \
-	wait $$p1; s1=$$?; wait $$p3; s3=$$?; \
-	tail -n 3 build-fuzz/fuzz_scene.log build-fuzz/fuzz_obj.log build-fuzz/fuzz_mtl.log; \
-	[ $$s1 = 0 ] && [ $$s2 = 0 ] && [ $$s3 = 0 ]
+	wait $$p1; s1=$$?; wait $$p3; s3=$$?; wait $$p4; s4=$$?; \
+	tail -n 3 build-fuzz/fuzz_scene.log build-fuzz/fuzz_obj.log build-fuzz/fuzz_mtl.log \
+	  build-fuzz/fuzz_image.log; \
+	[ $$s1 = 0 ] && [ $$s2 = 0 ] && [ $$s3 = 0 ] && [ $$s4 = 0 ]
 
 $(O)/fuzz/%: tests/fuzz/%.c $(O)/libmcrt.a $(CONFIG_MK)
 	@mkdir -p $(@D)

@@ -361,6 +361,26 @@ static int pick_channels(const exr_attr_chlist_t *chl, const char *layer, int id
     return 0;
 }
 
+/* The bytes of one pixel of every channel of chl, as a scanline chunk stores them unpacked. */
+static uint64_t pixel_bytes(const exr_attr_chlist_t *chl)
+{
+    uint64_t n = 0;
+    int k;
+    for (k = 0; k < chl->num_channels; k++)
+        n += chl->entries[k].pixel_type == EXR_PIXEL_HALF ? 2 : 4;
+    return n;
+}
+
+/* The most a packed byte can unpack to with compression c: 1032 for deflate (ZIP, ZIPS; RFC 1951,
+ * 258 bytes from a 2-bit code at best), 64 for EXR's run-length coding (128 bytes from 2), 1
+ * uncompressed; 0 where no such bound is known (the wavelet and lossy codecs). */
+static double unpack_ratio(exr_compression_t c)
+{
+    return c == EXR_COMPRESSION_NONE ? 1.0
+           : c == EXR_COMPRESSION_RLE ? 64.0
+           : c == EXR_COMPRESSION_ZIP || c == EXR_COMPRESSION_ZIPS ? 1032.0 : 0.0;
+}
+
 /* Decode the chosen channels idx[0..count-1] of part 0, channel k into the rows of to[k]: w pixels
  * a row, per_pixel 4-byte elements of this type a pixel (half is converted to float on the way).
  * One pass over the chunks, each decompressed once however many channels are wanted. */
@@ -374,20 +394,33 @@ static exr_result_t decode_pixels(exr_context_t ctx, const exr_attr_box2i_t *dw,
     int32_t lines;
     int y, k, started = 0;
 
+    const exr_attr_chlist_t *chl;
+    uint64_t bytes = 0; /* all the channels' bytes in one pixel */
     rv = exr_get_scanlines_per_chunk(ctx, 0, &lines);
+    if (rv == EXR_ERR_SUCCESS && (rv = exr_get_channels(ctx, 0, &chl)) == EXR_ERR_SUCCESS)
+        bytes = pixel_bytes(chl);
     for (y = dw->min.y; rv == EXR_ERR_SUCCESS && y <= dw->max.y; y += lines) {
         rv = exr_read_scanline_chunk_info(ctx, 0, y, &cinfo);
-        if (rv == EXR_ERR_SUCCESS)
-            rv = started ? exr_decoding_update(ctx, 0, &cinfo, &dec)
-                         : exr_decoding_initialize(ctx, 0, &cinfo, &dec);
         if (rv != EXR_ERR_SUCCESS)
             break;
-        /* The chunk must lie inside the data window, or our strides would write out of bounds. */
+        /* The chunk must lie inside the data window, or our strides would write out of bounds.
+         * Its unpacked size, which the decoder allocates before it inflates a byte, can be no
+         * more than its pixels' bytes, nor more than its packed bytes can unpack to
+         * (unpack_ratio): a 1.4 KB file found by make fuzz (tests/fuzz/fuzz_image.c) claimed
+         * 5.2 GB from 154 packed bytes, and the decoder asked mc_malloc for them. */
         if (cinfo.start_y < dw->min.y || cinfo.height < 1 ||
-            (int64_t)cinfo.start_y + cinfo.height - 1 > dw->max.y || (size_t)cinfo.width != w) {
+            (int64_t)cinfo.start_y + cinfo.height - 1 > dw->max.y || (size_t)cinfo.width != w ||
+            cinfo.unpacked_size > (uint64_t)cinfo.width * (uint64_t)cinfo.height * bytes ||
+            (unpack_ratio(cinfo.compression) > 0.0
+             && (double)cinfo.unpacked_size
+                    > unpack_ratio(cinfo.compression) * (double)cinfo.packed_size + 1024.0)) {
             *corrupt = 1;
             break;
         }
+        rv = started ? exr_decoding_update(ctx, 0, &cinfo, &dec)
+                     : exr_decoding_initialize(ctx, 0, &cinfo, &dec);
+        if (rv != EXR_ERR_SUCCESS)
+            break;
         /* Channels we do not want keep a NULL pointer, which the decoder skips. */
         for (k = 0; k < count; k++) {
             exr_coding_channel_info_t *ch = &dec.channels[idx[k]];
@@ -448,6 +481,21 @@ static mcrt_status read_part(exr_context_t ctx, struct exr_job *job, const char 
     /* The data window is the pixel rectangle stored; it becomes our image whatever its origin. */
     if ((long)dw.max.x - dw.min.x + 1 > INT32_MAX / (3 * (long)sizeof(float)))
         return mc_fail(d, MCRT_ERR_IO, "the image is too wide");
+    /* Nor can it be more pixels than the file's bytes can unpack to (unpack_ratio), so that a
+     * damaged or hostile header is refused before its image is allocated (as pfm.c compares
+     * the header with the file's size; make fuzz found a 1.4 KB EXR declaring 2.4 GB). */
+    {
+        exr_compression_t comp;
+        struct stat sb;
+        double raw = ((double)dw.max.x - dw.min.x + 1) * ((double)dw.max.y - dw.min.y + 1)
+                     * (double)pixel_bytes(chl);
+        if (exr_get_compression(ctx, 0, &comp) == EXR_ERR_SUCCESS && unpack_ratio(comp) > 0.0 &&
+            fstat(job->fd, &sb) == 0 && S_ISREG(sb.st_mode) &&
+            raw > unpack_ratio(comp) * (double)sb.st_size + 65536.0)
+            return mc_fail(d, MCRT_ERR_IO, "its %ldx%ld pixels (%.0f bytes) are more than its %ld "
+                                           "bytes can hold", (long)dw.max.x - dw.min.x + 1,
+                           (long)dw.max.y - dw.min.y + 1, raw, (long)sb.st_size);
+    }
     for (i = 0; i < n && st == MCRT_OK; i++)
         st = mc_image_alloc(&ims[i], (long)dw.max.x - dw.min.x + 1, (long)dw.max.y - dw.min.y + 1,
                             d);
