@@ -381,6 +381,27 @@ static double unpack_ratio(exr_compression_t c)
            : c == EXR_COMPRESSION_ZIP || c == EXR_COMPRESSION_ZIPS ? 1032.0 : 0.0;
 }
 
+/* Whether the data window dw of part 0 can be what its file holds: no more pixels than the file's
+ * bytes can unpack to (unpack_ratio), so that a damaged or hostile header is refused before its
+ * pixels are allocated, as pfm.c compares its header with the file's size (make fuzz found a
+ * 1.4 KB EXR declaring 2.4 GB). MCRT_OK, or MCRT_ERR_IO explained in d. */
+static mcrt_status check_window(exr_context_t ctx, const struct exr_job *job,
+                                const exr_attr_box2i_t *dw, const exr_attr_chlist_t *chl,
+                                mc_diag *d)
+{
+    exr_compression_t comp;
+    struct stat sb;
+    double raw = ((double)dw->max.x - dw->min.x + 1) * ((double)dw->max.y - dw->min.y + 1)
+                 * (double)pixel_bytes(chl);
+    if (exr_get_compression(ctx, 0, &comp) == EXR_ERR_SUCCESS && unpack_ratio(comp) > 0.0 &&
+        fstat(job->fd, &sb) == 0 && S_ISREG(sb.st_mode) &&
+        raw > unpack_ratio(comp) * (double)sb.st_size + 65536.0)
+        return mc_fail(d, MCRT_ERR_IO, "its %ldx%ld pixels (%.0f bytes) are more than its %ld "
+                                       "bytes can hold", (long)dw->max.x - dw->min.x + 1,
+                       (long)dw->max.y - dw->min.y + 1, raw, (long)sb.st_size);
+    return MCRT_OK;
+}
+
 /* Decode the chosen channels idx[0..count-1] of part 0, channel k into the rows of to[k]: w pixels
  * a row, per_pixel 4-byte elements of this type a pixel (half is converted to float on the way).
  * One pass over the chunks, each decompressed once however many channels are wanted. */
@@ -481,21 +502,8 @@ static mcrt_status read_part(exr_context_t ctx, struct exr_job *job, const char 
     /* The data window is the pixel rectangle stored; it becomes our image whatever its origin. */
     if ((long)dw.max.x - dw.min.x + 1 > INT32_MAX / (3 * (long)sizeof(float)))
         return mc_fail(d, MCRT_ERR_IO, "the image is too wide");
-    /* Nor can it be more pixels than the file's bytes can unpack to (unpack_ratio), so that a
-     * damaged or hostile header is refused before its image is allocated (as pfm.c compares
-     * the header with the file's size; make fuzz found a 1.4 KB EXR declaring 2.4 GB). */
-    {
-        exr_compression_t comp;
-        struct stat sb;
-        double raw = ((double)dw.max.x - dw.min.x + 1) * ((double)dw.max.y - dw.min.y + 1)
-                     * (double)pixel_bytes(chl);
-        if (exr_get_compression(ctx, 0, &comp) == EXR_ERR_SUCCESS && unpack_ratio(comp) > 0.0 &&
-            fstat(job->fd, &sb) == 0 && S_ISREG(sb.st_mode) &&
-            raw > unpack_ratio(comp) * (double)sb.st_size + 65536.0)
-            return mc_fail(d, MCRT_ERR_IO, "its %ldx%ld pixels (%.0f bytes) are more than its %ld "
-                                           "bytes can hold", (long)dw.max.x - dw.min.x + 1,
-                           (long)dw.max.y - dw.min.y + 1, raw, (long)sb.st_size);
-    }
+    if ((st = check_window(ctx, job, &dw, chl, d)) != MCRT_OK)
+        return st;
     for (i = 0; i < n && st == MCRT_OK; i++)
         st = mc_image_alloc(&ims[i], (long)dw.max.x - dw.min.x + 1, (long)dw.max.y - dw.min.y + 1,
                             d);
@@ -582,7 +590,8 @@ static mcrt_status read_words(exr_context_t ctx, struct exr_job *job, struct ima
     height = (long)dw.max.y - dw.min.y + 1;
     if (width > INT32_MAX / (4L * words->per_pixel))
         return mc_fail(d, MCRT_ERR_IO, "the image is too wide");
-    if ((st = mc_image_check_size(width, height, d)) != MCRT_OK)
+    if ((st = mc_image_check_size(width, height, d)) != MCRT_OK ||
+        (st = check_window(ctx, job, &dw, chl, d)) != MCRT_OK)
         return st;
     words->data = mc_malloc((size_t)width * (size_t)height * (size_t)words->per_pixel * 4);
     *text = mc_malloc((size_t)len + 1);
