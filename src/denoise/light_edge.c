@@ -5,6 +5,7 @@
 #include <stdlib.h>
 
 #include "core/alloc.h"
+#include "denoise/ldl.h"
 
 /* A fit is kept when its reduced chi-square, Σ w·(e − fit)²/(n − rank), is below EDGE_CHI2 times
  * the variances' scale (below): for the pixels of a straight edge it has mean 1 and, with 2
@@ -48,63 +49,36 @@ static int on_edge(const float *mean, const float *var, int w, int h, int x, int
 
 /* The weighted least squares of e = a + b·dx + c·dy over the n window pixels (offsets dx, dy,
  * values e, weights wt): its a and the variance of a, [(XᵀWX)⁻¹]₀₀, and its reduced chi-square.
- * XᵀWX is factored as LDLᵀ, a column adding nothing to those before it (a pivot below 1e-7 of its
- * diagonal: all the pixels in one row, so that dy is constant) dropped with its coefficient 0, as
- * nfor.c's solve does. Returns the chi-square, or a negative number when no degree of freedom is
- * left. */
+ * A column adding nothing to those before it (all the pixels in one row, so that dy is constant)
+ * is dropped with its coefficient 0 (ldl.h). Returns the chi-square, or a negative number when
+ * no degree of freedom is left. */
 static double plane_fit(const int *dx, const int *dy, const float *e, const float *wt, int n,
                         double *a, double *var_a)
 {
-    double M[3][3] = {{0.0}}, r[3] = {0.0}, D[3], z[3], chi = 0.0;
-    int i, j, k, rank = 0;
+    /* The right-hand sides: XᵀWe for the coefficients, e₀ for the first column of (XᵀWX)⁻¹. */
+    double M[3 * 3] = {0.0}, b[3 * 2] = {0.0, 1.0, 0.0, 0.0, 0.0, 0.0}, D[3], chi = 0.0;
+    int i, j, k, rank;
     for (i = 0; i < n; i++) {
         double x[3];
         x[0] = 1.0;
         x[1] = dx[i];
         x[2] = dy[i];
         for (j = 0; j < 3; j++) {
-            r[j] += wt[i] * x[j] * e[i];
+            b[2 * j] += wt[i] * x[j] * e[i];
             for (k = 0; k <= j; k++)
-                M[j][k] += wt[i] * x[j] * x[k];
+                M[3 * j + k] += wt[i] * x[j] * x[k];
         }
     }
-    /* M = L D Lᵀ, L unit lower triangular, kept in M's lower triangle. */
-    for (j = 0; j < 3; j++) {
-        double djj = M[j][j], diag = M[j][j];
-        for (k = 0; k < j; k++)
-            djj -= M[j][k] * M[j][k] * D[k];
-        D[j] = djj > 1e-7 * diag && diag > 1e-30 ? djj : 0.0;
-        rank += D[j] != 0.0;
-        for (i = j + 1; i < 3; i++) {
-            double s = M[i][j];
-            for (k = 0; k < j; k++)
-                s -= M[i][k] * M[j][k] * D[k];
-            M[i][j] = D[j] != 0.0 ? s / D[j] : 0.0;
-        }
-    }
+    rank = mc_ldl_factor(M, 3, D);
     if (n <= rank || D[0] == 0.0)
         return -1.0;
-    /* β = L⁻ᵀ D⁻¹ L⁻¹ r; z = L⁻¹ e₀, so that [(XᵀWX)⁻¹]₀₀ = Σ z_i²/D_i. */
-    for (i = 0; i < 3; i++) {
-        z[i] = i == 0 ? 1.0 : 0.0;
-        for (k = 0; k < i; k++) {
-            r[i] -= M[i][k] * r[k];
-            z[i] -= M[i][k] * z[k];
-        }
-    }
-    *var_a = 0.0;
-    for (i = 0; i < 3; i++) {
-        r[i] = D[i] != 0.0 ? r[i] / D[i] : 0.0;
-        *var_a += D[i] != 0.0 ? z[i] * z[i] / D[i] : 0.0;
-    }
-    for (i = 2; i >= 0; i--)
-        for (k = i + 1; k < 3; k++)
-            r[i] -= M[k][i] * r[k];
+    mc_ldl_solve(M, D, 3, b, 2);
     for (i = 0; i < n; i++) {
-        double d = e[i] - (r[0] + r[1] * dx[i] + r[2] * dy[i]);
+        double d = e[i] - (b[0] + b[2] * dx[i] + b[4] * dy[i]);
         chi += wt[i] * d * d;
     }
-    *a = r[0];
+    *a = b[0];
+    *var_a = b[1];
     return chi / (double)(n - rank);
 }
 

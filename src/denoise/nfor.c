@@ -9,6 +9,7 @@
 #include "core/alloc.h"
 #include "core/rng.h"
 #include "core/simd.h"
+#include "denoise/ldl.h"
 #include "denoise/light_edge.h"
 #include "render/render.h"
 
@@ -459,42 +460,6 @@ static mcrt_status nlm(struct pool *pl, const struct guide *g, const float *src,
 /* The channels regressed: the colour's three and the leverage probe (regress). */
 enum { REG_C = 4 };
 
-/* Solve the normal equations M β = b (M: n×n symmetric, b: n×REG_C) by an LDLᵀ factorisation that
- * drops the columns adding nothing to the ones before (a pivot below 1e-7 of its diagonal: a
- * feature constant over the window, or a copy of another), whose coefficients are then 0 -- the
- * basic least-squares solution a pivoted QR gives, at a fraction of the cost. */
-static void solve(double *M, int n, double *b)
-{
-    double D[MAX_DIM];
-    int i, j, k, c;
-    for (j = 0; j < n; j++) {
-        double djj = M[j * n + j], diag = M[j * n + j];
-        for (k = 0; k < j; k++)
-            djj -= M[j * n + k] * M[j * n + k] * D[k];
-        D[j] = djj > 1e-7 * diag && diag > 1e-30 ? djj : 0.0;
-        for (i = j + 1; i < n; i++) {
-            double s = M[i * n + j];
-            if (D[j] == 0.0) {
-                M[i * n + j] = 0.0;
-                continue;
-            }
-            for (k = 0; k < j; k++)
-                s -= M[i * n + k] * M[j * n + k] * D[k];
-            M[i * n + j] = s / D[j];
-        }
-    }
-    for (c = 0; c < REG_C; c++) {
-        for (i = 0; i < n; i++)
-            for (k = 0; k < i; k++)
-                b[i * REG_C + c] -= M[i * n + k] * b[k * REG_C + c];
-        for (i = 0; i < n; i++)
-            b[i * REG_C + c] = D[i] != 0.0 ? b[i * REG_C + c] / D[i] : 0.0;
-        for (i = n - 1; i >= 0; i--)
-            for (k = i + 1; k < n; k++)
-                b[i * REG_C + c] -= M[k * n + i] * b[k * REG_C + c];
-    }
-}
-
 /* The regression's window: offset o = (dy + R)·SIDE + (dx + R), padded with zero weights to NWP,
  * a multiple of LANES. */
 enum { SIDE = 2 * REG_R + 1, NW = SIDE * SIDE, NWP = (NW + LANES - 1) / LANES * LANES };
@@ -600,7 +565,7 @@ static void window_init(struct window *v)
 
 /* A feature differing from the pixel's own by less than FEATURE_EPS of it is the rounding of the
  * prefilter's weighted means (their float products and sums, ~1e-7 each), not a difference of
- * the surfaces: as a column of the design matrix it would pass solve's test, which is relative
+ * the surfaces: as a column of the design matrix it would pass the factorisation's test (ldl.h), which is relative
  * to the column's own scale, and the regression would fit the colour's noise to it. Measured by
  * make bench-denoise: with NL-means' sums in float (nlm_tile_body), the Cornell box's error rose
  * 0.1-2% without the cut and not at all with it (with double sums too, within 0.1%). */
@@ -649,7 +614,7 @@ static MC_ALWAYS_INLINE void window_fill(const struct reg_job *j, int x, int y, 
 }
 
 /* The weighted least squares of the window v for both bandwidths: X^T W X into M[k] (nd × nd)
- * and X^T W Y into B[k] (nd × REG_C), for solve. Row a of both at once: its weighted column against
+ * and X^T W Y into B[k] (nd × REG_C), for mc_ldl_solve. Row a of both at once: its weighted column against
  * the columns a..nd-1 and the colours, DOT_BLOCK at a time. */
 static MC_ALWAYS_INLINE void normal_equations(struct window *v, int nd, double M[2][MAX_DIM * MAX_DIM],
                                            double B[2][MAX_DIM * REG_C])
@@ -772,7 +737,9 @@ static MC_ALWAYS_INLINE void reg_tile_body(void *ctx, struct tile_worker *w, int
         window_fill(j, x, y, dist + l * NWP, v);
         normal_equations(v, nd, M, B);
         for (k = 0; k < 2; k++) {
-            solve(M[k], nd, B[k]);
+            double D[MAX_DIM];
+            mc_ldl_factor(M[k], nd, D);
+            mc_ldl_solve(M[k], D, nd, B[k], REG_C);
             for (a = 0; a < nd * REG_C; a++)
                 beta[k][a] = (float)B[k][a];
         }

@@ -1,0 +1,40 @@
+/* ldl.c: LDLᵀ factorisation and solve with dropped columns (see ldl.h). */
+#include "denoise/ldl.h"
+
+int mc_ldl_factor(double *M, int n, double *D)
+{
+    int i, j, k, rank = 0;
+    for (j = 0; j < n; j++) {
+        double djj = M[j * n + j], diag = M[j * n + j];
+        for (k = 0; k < j; k++)
+            djj -= M[j * n + k] * M[j * n + k] * D[k];
+        D[j] = djj > 1e-7 * diag && diag > 1e-30 ? djj : 0.0;
+        rank += D[j] != 0.0;
+        for (i = j + 1; i < n; i++) {
+            double s = M[i * n + j];
+            if (D[j] == 0.0) {
+                M[i * n + j] = 0.0;
+                continue;
+            }
+            for (k = 0; k < j; k++)
+                s -= M[i * n + k] * M[j * n + k] * D[k];
+            M[i * n + j] = s / D[j];
+        }
+    }
+    return rank;
+}
+
+void mc_ldl_solve(const double *L, const double *D, int n, double *b, int nrhs)
+{
+    int i, k, c;
+    for (c = 0; c < nrhs; c++) {
+        for (i = 0; i < n; i++)
+            for (k = 0; k < i; k++)
+                b[i * nrhs + c] -= L[i * n + k] * b[k * nrhs + c];
+        for (i = 0; i < n; i++)
+            b[i * nrhs + c] = D[i] != 0.0 ? b[i * nrhs + c] / D[i] : 0.0;
+        for (i = n - 1; i >= 0; i--)
+            for (k = i + 1; k < n; k++)
+                b[i * nrhs + c] -= L[k * n + i] * b[k * nrhs + c];
+    }
+}
