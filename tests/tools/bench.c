@@ -43,6 +43,8 @@ static const char *const tracer_names[3] = {"mcrt", "Embree MEDIUM", "Embree HIG
 static int mcrt_only;  /* --mcrt-only */
 static int medium_only; /* --medium */
 static int one_thread;  /* --one-thread */
+static int build_only;  /* --build-only: the builds alone, BUILDS_ONLY times each, no rays */
+enum { BUILDS_ONLY = 7, BUILDS_MAX = 7 };
 
 /* The tracers this run compares: all those built in, or mcrt alone. Computed from the constant
  * TRACERS rather than kept in a variable, so that the compiler sees it never exceeds the arrays
@@ -636,7 +638,7 @@ static struct tree_stats tree_stats(const struct bvh *b)
 static RTCScene embree_scene(RTCDevice dev, const struct mesh *m, enum RTCBuildQuality q,
                              const char *label, int builds)
 {
-    double wall[3], cpu[3];
+    double wall[BUILDS_MAX], cpu[BUILDS_MAX];
     RTCScene sc = NULL;
     struct rss mem = {-1, -1};
     int i;
@@ -794,8 +796,8 @@ static int bench_scene(const struct scene_def *sd, int threads, int quick, struc
     struct bvh b;
     struct ray_set sets[SET_COUNT];
     mc_diag d;
-    double build_wall[3], build_cpu[3];
-    int builds = quick ? 1 : 3, reps = quick ? 1 : 3, i, bt;
+    double build_wall[BUILDS_MAX], build_cpu[BUILDS_MAX];
+    int builds = build_only ? BUILDS_ONLY : quick ? 1 : 3, reps = quick ? 1 : 3, i, bt;
     double min_s = quick ? 0.05 : 0.25;
     struct tree_stats ts;
     struct rss mem = {-1, -1};
@@ -823,8 +825,9 @@ static int bench_scene(const struct scene_def *sd, int threads, int quick, struc
             orig[k].p[c] = v3(v[0], v[1], v[2]);
         }
     }
-    /* One build thread, then all (the last build is the one traced). */
-    for (bt = 0; bt < 2; bt++) {
+    /* One build thread, then all (the last build is the one traced; --build-only --one-thread:
+     * one thread alone). */
+    for (bt = 0; bt < (build_only && one_thread ? 1 : 2); bt++) {
         for (i = 0; i < builds; i++) {
             double w0, c0;
             long long mark;
@@ -875,51 +878,54 @@ static int bench_scene(const struct scene_def *sd, int threads, int quick, struc
                                                 "Embree 3 HIGH, 1 thread", builds) : NULL;
 #endif
 
-    for (i = 0; i < SET_COUNT; i++)
-        set_alloc(&sets[i]);
-    for (e = 0; e < ntracers; e++) {
-        tbuf[e] = e == 0 ? NULL : xmalloc(PIXELS * sizeof *tbuf[e]);
-        pbuf[e] = e == 0 ? NULL : xmalloc(PIXELS * sizeof *pbuf[e]);
-    }
-    make_primary(&sets[SET_PRIMARY]);
-    for (i = 0; i < SET_COUNT; i++) {
-        struct row *r = &rows[i];
-        double wall;
-        if (i == SET_DIFFUSE)
-            make_secondary(&m, &sets[SET_PRIMARY], &sets[SET_DIFFUSE], &sets[SET_SHADOW]);
+    /* The rays: traced by every tracer, measured, checked (rows). */
+    if (!build_only) {
+        for (i = 0; i < SET_COUNT; i++)
+            set_alloc(&sets[i]);
         for (e = 0; e < ntracers; e++) {
-            j[e].bvh = &b;
-            j[e].prims = prims;
-            j[e].ids = ids;
-#ifdef MCRT_HAVE_EMBREE
-            j[e].escene = e == 0 ? NULL : esc[e - 1];
-#endif
-            j[e].set = &sets[i];
-            j[e].t = e == 0 ? sets[i].t : tbuf[e];
-            j[e].prim = e == 0 ? sets[i].prim : pbuf[e];
-            j[e].occlusion = i == SET_SHADOW;
-            /* mcrt's results are the ones the statistics and the next ray sets are made from. */
-            run(&j[e], 1, 1, &wall);
-            r->agree[e] = agreement(&m, &j[0], &j[e]);
+            tbuf[e] = e == 0 ? NULL : xmalloc(PIXELS * sizeof *tbuf[e]);
+            pbuf[e] = e == 0 ? NULL : xmalloc(PIXELS * sizeof *pbuf[e]);
         }
-        r->scene = sd->name;
-        r->set = set_names[i];
-        r->rays = sets[i].count;
-        r->st = statistics(&sets[i], j[0].occlusion);
-        r->ref = &sd->ref[i];
-        measure(j, ntracers, 1, reps, min_s, r->one);
-        if (one_thread) {
-            for (e = 0; e < ntracers; e++)
-                r->all[e].ns_per_ray = r->all[e].wall_mrays = NAN;
-        } else {
-            measure(j, ntracers, threads, reps, min_s, r->all);
+        make_primary(&sets[SET_PRIMARY]);
+        for (i = 0; i < SET_COUNT; i++) {
+            struct row *r = &rows[i];
+            double wall;
+            if (i == SET_DIFFUSE)
+                make_secondary(&m, &sets[SET_PRIMARY], &sets[SET_DIFFUSE], &sets[SET_SHADOW]);
+            for (e = 0; e < ntracers; e++) {
+                j[e].bvh = &b;
+                j[e].prims = prims;
+                j[e].ids = ids;
+    #ifdef MCRT_HAVE_EMBREE
+                j[e].escene = e == 0 ? NULL : esc[e - 1];
+    #endif
+                j[e].set = &sets[i];
+                j[e].t = e == 0 ? sets[i].t : tbuf[e];
+                j[e].prim = e == 0 ? sets[i].prim : pbuf[e];
+                j[e].occlusion = i == SET_SHADOW;
+                /* mcrt's results are the ones the statistics and the next ray sets are made from. */
+                run(&j[e], 1, 1, &wall);
+                r->agree[e] = agreement(&m, &j[0], &j[e]);
+            }
+            r->scene = sd->name;
+            r->set = set_names[i];
+            r->rays = sets[i].count;
+            r->st = statistics(&sets[i], j[0].occlusion);
+            r->ref = &sd->ref[i];
+            measure(j, ntracers, 1, reps, min_s, r->one);
+            if (one_thread) {
+                for (e = 0; e < ntracers; e++)
+                    r->all[e].ns_per_ray = r->all[e].wall_mrays = NAN;
+            } else {
+                measure(j, ntracers, threads, reps, min_s, r->all);
+            }
         }
-    }
-    for (i = 0; i < SET_COUNT; i++)
-        set_free(&sets[i]);
-    for (e = 1; e < ntracers; e++) {
-        free(tbuf[e]);
-        free(pbuf[e]);
+        for (i = 0; i < SET_COUNT; i++)
+            set_free(&sets[i]);
+        for (e = 1; e < ntracers; e++) {
+            free(tbuf[e]);
+            free(pbuf[e]);
+        }
     }
 #ifdef MCRT_HAVE_EMBREE
     if (dev) {
@@ -970,11 +976,13 @@ int main(int argc, char **argv)
             medium_only = 1;
         } else if (strcmp(argv[i], "--one-thread") == 0) {
             one_thread = 1;
+        } else if (strcmp(argv[i], "--build-only") == 0) {
+            build_only = 1;
         } else if (strcmp(argv[i], "--scene") == 0 && i + 1 < argc) {
             only = argv[++i];
         } else {
             fprintf(stderr, "usage: bench [--scene sphere-1M|grid-city|spheres-16] [--quick] "
-                            "[--mcrt-only] [--medium] [--one-thread]\n");
+                            "[--mcrt-only] [--medium] [--one-thread] [--build-only]\n");
             return 2;
         }
     }
@@ -1025,6 +1033,8 @@ int main(int argc, char **argv)
         fprintf(stderr, "bench: no scene named '%s'\n", only);
         return 2;
     }
+    if (build_only)
+        return 0;
 
     printf("\n%-11s %-8s %-13s %9s | %-31s | %-31s | %-13s | %s\n", "trace", "set", "tracer",
            "rays", "1 thread", "all threads", "mcrt/other", "answers vs mcrt");
