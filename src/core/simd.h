@@ -9,12 +9,16 @@
 /* GCC -O2 keeps large static functions out of line, with their flags as run-time arguments;
  * forced inlining makes them constants of each caller's copy. MC_NOINLINE keeps a function that
  * is a dispatch target its own, so that the caller is a test and a jump. */
+/* MC_PREFETCH(p) asks for p's cache line ahead of a read that a scattered access pattern would
+ * otherwise leave waiting for memory; it changes no result. */
 #if defined(__GNUC__)
 #define MC_ALWAYS_INLINE inline __attribute__((always_inline))
 #define MC_NOINLINE __attribute__((noinline))
+#define MC_PREFETCH(p) __builtin_prefetch(p)
 #else
 #define MC_ALWAYS_INLINE inline
 #define MC_NOINLINE
+#define MC_PREFETCH(p) ((void)(p))
 #endif
 
 #if defined(__GNUC__) && defined(__x86_64__) && !defined(__AVX2__)

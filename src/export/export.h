@@ -15,8 +15,8 @@ static inline int mc_export_is_emitter(const struct prim *p) { return !v3_is_zer
 /* The scene's primitives in a fixed order (a new array of s->prim_count pointers, to free; NULL
  * when out of memory): by kind (triangles, spheres, quads, disks), material, flags, motion,
  * normals, then the bytes of the geometry and the emission. Any fixed order would do; what
- * matters is that it is not the BVH's leaf order, in which scene preparation leaves the
- * primitives: an exported file must not change when only the BVH build does (the POV-Ray
+ * matters is that it is not the order scene preparation leaves the primitives in (static before
+ * moving): an exported file must not change when only the preparation does (the POV-Ray
  * references are compared with theirs byte for byte). */
 const struct prim **mc_export_sorted_prims(const struct scene *s);
 

@@ -481,14 +481,16 @@ struct moving_ray {
 };
 
 /* leaf_static's contract for moving primitives: ctx is the moving_ray. Only the blocks' primitive
- * indices are used: the leaf is prims[base .. base + count), base its first block's first. */
+ * indices are used: the leaf's count primitives are the first count lanes of its blocks from
+ * block `first`. */
 static MC_ALWAYS_INLINE int leaf_moving(void *ctx, const struct bvh *b, const struct prim *prims,
                                      uint32_t first, uint32_t count, struct hit *h, int any_hit)
 {
     struct moving_ray *m = ctx;
-    uint32_t k, base = mc_tri4_prim(b->tri4[first].prim[0]);
+    uint32_t i;
     int found = 0;
-    for (k = base; k < base + count; k++) {
+    for (i = 0; i < count; i++) {
+        uint32_t k = mc_tri4_prim(b->tri4[first + i / 4].prim[i % 4]);
         const struct prim *p = &prims[k];
         if (p->motion != m->motion) {
             struct rigid x;

@@ -21,17 +21,17 @@ struct bvh {
     struct aabb bounds; /* of the whole scene */
 };
 
-/* Build over prims[0..n), reordering prims in place into leaf order. n may be 0.
- * On failure (out of memory) b is left empty and the message is in d. */
-mcrt_status mc_bvh_build(struct bvh *b, struct prim *prims, size_t n, mc_diag *d);
-/* The same build with the primitives' boxes given: bounds[i] bounds prims[i] (bounds is read, not
- * reordered). For moving primitives, bounds over the times their rays will carry. NULL: the
- * primitives' own bounds (mc_bvh_build). */
-mcrt_status mc_bvh_build_bounds(struct bvh *b, struct prim *prims, const struct aabb *bounds,
+/* Build over prims[0..n), which the BVH reads but does not move: a hit's prim is an index into
+ * prims. n may be 0. On failure (out of memory) b is left empty and the message is in d. */
+mcrt_status mc_bvh_build(struct bvh *b, const struct prim *prims, size_t n, mc_diag *d);
+/* The same build with the primitives' boxes given: bounds[i] bounds prims[i]. For moving
+ * primitives, bounds over the times their rays will carry. NULL: the primitives' own bounds
+ * (mc_bvh_build). */
+mcrt_status mc_bvh_build_bounds(struct bvh *b, const struct prim *prims, const struct aabb *bounds,
                                 size_t n, mc_diag *d);
 /* mc_bvh_build_bounds on up to `threads` threads (0: one per processor online). The result is the
  * same for any number of threads. (The other two builds use one per processor.) */
-mcrt_status mc_bvh_build_threads(struct bvh *b, struct prim *prims, const struct aabb *bounds,
+mcrt_status mc_bvh_build_threads(struct bvh *b, const struct prim *prims, const struct aabb *bounds,
                                  size_t n, int threads, mc_diag *d);
 void mc_bvh_free(struct bvh *b);
 /* Bytes the BVH holds beyond the primitives: its nodes and its leaf data (the triangle blocks). */

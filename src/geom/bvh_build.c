@@ -16,6 +16,7 @@
 
 #include "core/alloc.h"
 #include "core/atomic.h"
+#include "core/simd.h"
 #include "geom/bvh_node.h"
 #include "geom/tri4.h"
 
@@ -216,11 +217,13 @@ struct split {
     int axis, bin;          /* refs whose centroid falls in bins < bin go left */
     float cost;             /* area-weighted block counts: A_l·B(N_l) + A_r·B(N_r) (half areas) */
     struct box left, right; /* bounds of the two sides */
-    struct box lc, rc;      /* and of their (doubled) centroids */
+    struct box lc, rc;      /* and of their (doubled) centroids (partition) */
 };
 
 /* Bins for a node of n primitives: BINS, but no more than n for small nodes, where the fixed
- * cost of sweeping the bins would otherwise dominate the build. */
+ * cost of sweeping the bins would otherwise dominate the build. (Fewer for small nodes, 6 up to 16
+ * primitives and 12 up to 64, built sphere-1M 5% faster with an equal SAH estimate, but traced
+ * spheres-16's primary and shadow rays 1 to 3% slower: bench --medium, 3 runs side by side.) */
 static int bin_count(const struct task *t)
 {
     uint32_t n = t->end - t->begin;
@@ -242,12 +245,9 @@ static float bin_scale(const struct box *cbox, int axis, int nbins)
     return ext > 0.0f ? (float)nbins * 0.99999f / ext : 0.0f;
 }
 
-/* Bin boxes, counts and the bounds of the bins' (doubled) centroids per axis. The centroid bounds
- * give the children's centroid boxes, which the partition would otherwise compute primitive by
- * primitive, through selects, for both sides (a third of its operations). */
+/* Bin boxes and counts per axis. */
 struct bins {
     f4 lo[3][BINS], hi[3][BINS];
-    f4 clo[3][BINS], chi[3][BINS];
     uint32_t cnt[3][BINS];
 };
 
@@ -263,40 +263,25 @@ static void bins_clear(struct bins *b, int nbins)
     int axis, i;
     for (axis = 0; axis < 3; axis++)
         for (i = 0; i < nbins; i++) {
-            b->lo[axis][i] = b->clo[axis][i] = lo;
-            b->hi[axis][i] = b->chi[axis][i] = hi;
+            b->lo[axis][i] = lo;
+            b->hi[axis][i] = hi;
             b->cnt[axis][i] = 0;
         }
 }
 
-/* Add refs[begin, end) to b. */
-static void bin_refs(struct bins *b, const struct binning *bn, const struct ref *refs,
-                     uint32_t begin, uint32_t end)
+/* Add the ref lo, hi to b, i its bins. Written out per axis: -O2 does not unroll the loop, whose
+ * index arithmetic then costs as much as the update. */
+static inline void bin_ref(struct bins *b, f4 lo, f4 hi, const int32_t *i)
 {
-    uint32_t k;
-    for (k = begin; k < end; k++) {
-        const struct ref *r = &refs[k];
-        f4 lo = f4_load3(r->lo), hi = f4_load(r->hi), c = f4_add(lo, hi);
-        int32_t i[4];
-        bins_of(c, bn->lo, bn->scale, bn->top, i);
-        /* Written out per axis: -O2 does not unroll the loop, whose index arithmetic then costs
-         * as much as the update. */
-        b->lo[0][i[0]] = f4_min(b->lo[0][i[0]], lo);
-        b->hi[0][i[0]] = f4_max(b->hi[0][i[0]], hi);
-        b->clo[0][i[0]] = f4_min(b->clo[0][i[0]], c);
-        b->chi[0][i[0]] = f4_max(b->chi[0][i[0]], c);
-        b->cnt[0][i[0]]++;
-        b->lo[1][i[1]] = f4_min(b->lo[1][i[1]], lo);
-        b->hi[1][i[1]] = f4_max(b->hi[1][i[1]], hi);
-        b->clo[1][i[1]] = f4_min(b->clo[1][i[1]], c);
-        b->chi[1][i[1]] = f4_max(b->chi[1][i[1]], c);
-        b->cnt[1][i[1]]++;
-        b->lo[2][i[2]] = f4_min(b->lo[2][i[2]], lo);
-        b->hi[2][i[2]] = f4_max(b->hi[2][i[2]], hi);
-        b->clo[2][i[2]] = f4_min(b->clo[2][i[2]], c);
-        b->chi[2][i[2]] = f4_max(b->chi[2][i[2]], c);
-        b->cnt[2][i[2]]++;
-    }
+    b->lo[0][i[0]] = f4_min(b->lo[0][i[0]], lo);
+    b->hi[0][i[0]] = f4_max(b->hi[0][i[0]], hi);
+    b->cnt[0][i[0]]++;
+    b->lo[1][i[1]] = f4_min(b->lo[1][i[1]], lo);
+    b->hi[1][i[1]] = f4_max(b->hi[1][i[1]], hi);
+    b->cnt[1][i[1]]++;
+    b->lo[2][i[2]] = f4_min(b->lo[2][i[2]], lo);
+    b->hi[2][i[2]] = f4_max(b->hi[2][i[2]], hi);
+    b->cnt[2][i[2]]++;
 }
 
 static void bins_merge(struct bins *into, const struct bins *b, int nbins)
@@ -306,10 +291,43 @@ static void bins_merge(struct bins *into, const struct bins *b, int nbins)
         for (i = 0; i < nbins; i++) {
             into->lo[axis][i] = f4_min(into->lo[axis][i], b->lo[axis][i]);
             into->hi[axis][i] = f4_max(into->hi[axis][i], b->hi[axis][i]);
-            into->clo[axis][i] = f4_min(into->clo[axis][i], b->clo[axis][i]);
-            into->chi[axis][i] = f4_max(into->chi[axis][i], b->chi[axis][i]);
             into->cnt[axis][i] += b->cnt[axis][i];
         }
+}
+
+/* Ranges of at least PAIRED_MIN refs are binned two refs at a time into two sets of bins, merged
+ * at the end. Consecutive refs of a mesh lie side by side and fall into the same bins, so that
+ * each bin's update waits for the one before it, through memory (a load, min and store chain a
+ * ref); two sets make two independent chains. Measured (bench --build-only, cycles of the binary
+ * build's nodes of more than 4,096 primitives, sphere-1M): 250 M -> 195 M (4 sets: 215 M). Below
+ * a few hundred refs, clearing and merging the second set costs what it saves. */
+enum { PAIRED_MIN = 512 };
+
+/* Add refs[begin, end) to b. */
+static void bin_refs(struct bins *b, const struct binning *bn, const struct ref *refs,
+                     uint32_t begin, uint32_t end)
+{
+    uint32_t k = begin;
+    if (end - begin >= PAIRED_MIN) {
+        struct bins b2;
+        bins_clear(&b2, bn->nbins);
+        for (; k + 1 < end; k += 2) {
+            f4 lo = f4_load3(refs[k].lo), hi = f4_load(refs[k].hi);
+            f4 lo2 = f4_load3(refs[k + 1].lo), hi2 = f4_load(refs[k + 1].hi);
+            int32_t i[4], i2[4];
+            bins_of(f4_add(lo, hi), bn->lo, bn->scale, bn->top, i);
+            bins_of(f4_add(lo2, hi2), bn->lo, bn->scale, bn->top, i2);
+            bin_ref(b, lo, hi, i);
+            bin_ref(&b2, lo2, hi2, i2);
+        }
+        bins_merge(b, &b2, bn->nbins);
+    }
+    for (; k < end; k++) {
+        f4 lo = f4_load3(refs[k].lo), hi = f4_load(refs[k].hi);
+        int32_t i[4];
+        bins_of(f4_add(lo, hi), bn->lo, bn->scale, bn->top, i);
+        bin_ref(b, lo, hi, i);
+    }
 }
 
 /* Run fn(ctx, c) for c = 0..n-1 on up to `threads` threads (the caller's included), taking the
@@ -458,49 +476,74 @@ static int find_split(const struct ref *refs, const struct task *t, int threads,
     }
     if (found) {
         f4 llo = empty_lo, lhi = empty_hi, rlo = empty_lo, rhi = empty_hi;
-        f4 lclo = empty_lo, lchi = empty_hi, rclo = empty_lo, rchi = empty_hi;
         const int a = best->axis;
         for (i = 0; i < best->bin; i++) {
             llo = f4_min(llo, bins.lo[a][i]);
             lhi = f4_max(lhi, bins.hi[a][i]);
-            lclo = f4_min(lclo, bins.clo[a][i]);
-            lchi = f4_max(lchi, bins.chi[a][i]);
         }
         for (; i < nbins; i++) {
             rlo = f4_min(rlo, bins.lo[a][i]);
             rhi = f4_max(rhi, bins.hi[a][i]);
-            rclo = f4_min(rclo, bins.clo[a][i]);
-            rchi = f4_max(rchi, bins.chi[a][i]);
         }
         f4_store3(best->left.lo, llo);
         f4_store3(best->left.hi, lhi);
         f4_store3(best->right.lo, rlo);
         f4_store3(best->right.hi, rhi);
-        f4_store3(best->lc.lo, lclo);
-        f4_store3(best->lc.hi, lchi);
-        f4_store3(best->rc.lo, rclo);
-        f4_store3(best->rc.hi, rchi);
     }
     return found;
 }
 
-/* Partition refs by the split; returns the first index of the right side (the sides' centroid
- * boxes come from the bins: split.lc, split.rc). Branch-free (Lomuto's scheme with an
- * unconditional swap): which side a primitive goes to is a coin flip the branch predictor cannot
- * learn, and a mispredicted branch per primitive cost more than the swap. */
-static uint32_t partition(struct ref *refs, const struct task *t, const struct split *s)
+/* The doubled centroid of ref r, lanes 0..2. */
+static inline f4 ref_centroid(const struct ref *r)
 {
-    int nbins = bin_count(t), axis = s->axis;
+    return f4_add(f4_load3(r->lo), f4_load(r->hi));
+}
+
+/* Partition refs by the split, and bound the two sides' (doubled) centroids into s->lc and s->rc;
+ * returns the first index of the right side. Hoare's scheme: each ref is read once, and only
+ * those on the wrong side are written, swapped in pairs. */
+static uint32_t partition(struct ref *refs, const struct task *t, struct split *s)
+{
+    int nbins = bin_count(t), axis = s->axis, bin = s->bin;
     float lo = t->cbox.lo[axis], scale = bin_scale(&t->cbox, axis, nbins);
-    uint32_t i, j = t->begin;
-    for (i = t->begin; i < t->end; i++) {
-        struct ref r = refs[i];
-        int left = bin_of(r.lo[axis] + r.hi[axis], lo, scale, nbins) < s->bin;
-        refs[i] = refs[j];
-        refs[j] = r;
-        j += (uint32_t)left;
+    uint32_t l = t->begin, r = t->end;
+    f4 llo = f4_set(INFINITY, INFINITY, INFINITY), lhi = f4_set(-INFINITY, -INFINITY, -INFINITY);
+    f4 rlo = llo, rhi = lhi;
+    for (;;) {
+        f4 cl, cr;
+        struct ref x;
+        /* cl, cr: the centroids of the refs that stop the two scans, a right one and a left. */
+        for (; l < r; l++) {
+            cl = ref_centroid(&refs[l]);
+            if (bin_of(refs[l].lo[axis] + refs[l].hi[axis], lo, scale, nbins) >= bin)
+                break;
+            llo = f4_min(llo, cl);
+            lhi = f4_max(lhi, cl);
+        }
+        for (; l < r; r--) {
+            cr = ref_centroid(&refs[r - 1]);
+            if (bin_of(refs[r - 1].lo[axis] + refs[r - 1].hi[axis], lo, scale, nbins) < bin)
+                break;
+            rlo = f4_min(rlo, cr);
+            rhi = f4_max(rhi, cr);
+        }
+        if (l >= r)
+            break;
+        x = refs[l];
+        refs[l] = refs[r - 1];
+        refs[r - 1] = x;
+        llo = f4_min(llo, cr);
+        lhi = f4_max(lhi, cr);
+        rlo = f4_min(rlo, cl);
+        rhi = f4_max(rhi, cl);
+        l++;
+        r--;
     }
-    return j;
+    f4_store3(s->lc.lo, llo);
+    f4_store3(s->lc.hi, lhi);
+    f4_store3(s->rc.lo, rlo);
+    f4_store3(s->rc.hi, rhi);
+    return l;
 }
 
 /* Bounds and centroid bounds of refs[begin, end). */
@@ -552,49 +595,6 @@ static void *alloc_large(size_t bytes)
         (void)madvise(p, bytes, MADV_HUGEPAGE); /* advice only: failure changes nothing */
 #endif
     return p;
-}
-
-/* Reorder prims so that prims[k] becomes the old prims[order[k]] (order is used up). A large array
- * goes through a copy: the gathers are independent loads the processor overlaps, where following
- * the permutation's cycles in place is a chain of dependent cache misses (it was a seventh of the
- * build), and the copy's huge pages (alloc_large) are few to map. A smaller one, which the caches
- * hold, is permuted in place, along the cycles: on 4 KB pages a copy's first touch cost about
- * 1.5 us a page, 6% of a 65,536-triangle build (its 1,024 page faults of 3,121). Returns 0 when
- * out of memory. */
-static int permute_in_place(size_t n) { return n * sizeof(struct prim) < HUGE_MIN; }
-
-static int permute_prims(struct prim *prims, uint32_t *order, uint32_t n)
-{
-    uint32_t k;
-    if (!permute_in_place(n)) {
-        struct prim *tmp = alloc_large((size_t)n * sizeof *tmp);
-        if (!tmp)
-            return 0;
-        for (k = 0; k < n; k++)
-            tmp[k] = prims[order[k]];
-        memcpy(prims, tmp, (size_t)n * sizeof *prims);
-        free(tmp);
-        return 1;
-    }
-    /* Each cycle k -> order[k] -> ... once: a slot filled gets order[j] = j, which marks it. */
-    for (k = 0; k < n; k++) {
-        struct prim first;
-        uint32_t j = k;
-        if (order[k] == k)
-            continue;
-        first = prims[k];
-        for (;;) {
-            uint32_t src = order[j];
-            order[j] = j;
-            if (src == k) {
-                prims[j] = first;
-                break;
-            }
-            prims[j] = prims[src];
-            j = src;
-        }
-    }
-    return 1;
 }
 
 /* The binary build of the subtree of task root (root->node is ignored: the subtree's root is
@@ -794,7 +794,7 @@ static float bnode_half_area(const struct bnode *n)
 /* The plan for binary node x's subtree: cost[x][i - 1] is the least cost of representing it by at
  * most i slots of a wide node, areas times unit costs as in the SAH. */
 struct plan {
-    uint32_t first, count;       /* its primitives: prims[first, first + count) */
+    uint32_t first, count;       /* its primitives: prims[order[first .. first + count)] */
     uint8_t leaf;                /* as one slot: 1 a leaf of all of them, 0 a wide node */
     uint8_t node_left;           /* as a wide node: how many of its slots its left child takes */
     uint8_t left[BVH_WIDTH + 1]; /* left[i], i >= 2: in at most i slots, how many the left child
@@ -856,10 +856,14 @@ static void plan_collapse(const struct bnode *bn, size_t count, struct plan *pla
     }
 }
 
+enum { PREFETCH_AHEAD = 32 };
+
 struct collapse {
     const struct bnode *bn;
     const struct plan *plan;
-    const struct prim *prims; /* in leaf order */
+    const struct prim *prims;
+    const uint32_t *order; /* the primitives' indices in leaf order */
+    size_t n, ahead;       /* order's length; primitives order[0, ahead) are prefetched */
     struct bvh_node *nodes;
     size_t node_count;
     struct tri4 *tri4;
@@ -882,7 +886,7 @@ static void gather_slots(const struct collapse *c, uint32_t x, int slots, uint32
 /* The wide node for binary node x (and, recursively, its subtree) into c->nodes; returns its
  * index. A node of one leaf is the root of a tree that is one leaf. Nodes are numbered in
  * pre-order, the root 0; leaves get their blocks (tri4.h) in the same order, which is the
- * primitives' order. The recursion is no deeper than the binary tree. */
+ * order's. The recursion is no deeper than the binary tree. */
 static uint32_t emit_node(struct collapse *c, uint32_t x)
 {
     const struct plan *p = &c->plan[x];
@@ -907,7 +911,12 @@ static uint32_t emit_node(struct collapse *c, uint32_t x)
         if (q->leaf) {
             w->count[i] = (uint8_t)q->count;
             w->child[i] = (uint32_t)c->tri4_count;
-            mc_tri4_fill(&c->tri4[c->tri4_count], c->prims, q->first, q->count);
+            /* The leaves come in the order's order, and the primitives they read are scattered:
+             * asked for PREFETCH_AHEAD ahead, they arrive together rather than one by one. */
+            for (; c->ahead < c->n && c->ahead < (size_t)q->first + q->count + PREFETCH_AHEAD;
+                 c->ahead++)
+                MC_PREFETCH(&c->prims[c->order[c->ahead]]);
+            mc_tri4_fill(&c->tri4[c->tri4_count], c->prims, c->order + q->first, q->count);
             c->tri4_count += mc_tri4_blocks(q->count);
         } else {
             w->child[i] = emit_node(c, slot[i]);
@@ -916,30 +925,34 @@ static uint32_t emit_node(struct collapse *c, uint32_t x)
     return wi;
 }
 
-/* The wide BVH over the binary tree bn[0, count) into b: nodes and blocks. prims are in leaf
- * order. scratch (from malloc, or NULL) is memory of scratch_bytes that collapse may use, and
- * frees. Returns 0 when out of memory (b is then left for mc_bvh_free). */
+/* The wide BVH over the binary tree bn[0, count) into b: nodes and blocks. order (from malloc,
+ * of order_bytes) holds the n primitives' indices in leaf order; the memory after them is the
+ * collapse's scratch, given back before the wide nodes are made (peak memory), and order is freed
+ * at the end. Returns 0 when out of memory (b is then left for mc_bvh_free). */
 static int collapse(const struct bnode *bn, size_t count, const struct prim *prims,
-                    void *scratch, size_t scratch_bytes, struct bvh *b)
+                    uint32_t *order, size_t n, size_t order_bytes, struct bvh *b)
 {
     struct collapse c;
-    /* The costs go into the caller's scratch memory when they fit: pages already mapped, where
-     * fresh ones would cost a page fault each (about 1.5 us on this project's machine, 260 of a
-     * 65,536-triangle build's). The scratch memory is freed with them, before the wide nodes are
-     * made (peak memory). */
+    /* The costs go into the scratch memory when they fit: pages already mapped, where fresh ones
+     * would cost a page fault each (about 1.5 us on this project's machine, 260 of a
+     * 65,536-triangle build's). */
     size_t cost_bytes = count * sizeof(float[BVH_WIDTH]);
-    float (*cost)[BVH_WIDTH] = cost_bytes <= scratch_bytes ? scratch : mc_malloc(cost_bytes);
+    size_t scratch_at = (n * sizeof *order + 63) / 64 * 64;
+    int in_scratch = scratch_at + cost_bytes <= order_bytes;
+    float (*cost)[BVH_WIDTH] = in_scratch ? (void *)((char *)order + scratch_at)
+                                          : mc_malloc(cost_bytes);
     struct plan *plan = mc_malloc(count * sizeof *plan);
     /* Bounds: each wide node but a one-leaf root makes one binary inner node a wide node; merging
      * leaves never adds blocks (ceil((a + b)/4) <= ceil(a/4) + ceil(b/4)). */
     size_t inner = (count - 2) / 2, blocks = 0, i;
     if (cost && plan)
         plan_collapse(bn, count, plan, cost);
-    if ((void *)cost != scratch)
+    if (!in_scratch)
         free(cost);
-    free(scratch);
+    order = mc_shrink(order, n * sizeof *order);
     if (!cost || !plan) {
         free(plan);
+        free(order);
         return 0;
     }
     for (i = 0; i < count; i++)
@@ -947,12 +960,16 @@ static int collapse(const struct bnode *bn, size_t count, const struct prim *pri
     c.bn = bn;
     c.plan = plan;
     c.prims = prims;
+    c.order = order;
+    c.n = n;
+    c.ahead = 0;
     c.node_count = c.tri4_count = 0;
     c.nodes = alloc_large((inner > 1 ? inner : 1) * sizeof *c.nodes);
     c.tri4 = alloc_large(blocks * sizeof *c.tri4);
     if (c.nodes && c.tri4)
         emit_node(&c, 0);
     free(plan);
+    free(order);
     /* Give back the unused tails. A shrinking realloc keeps the block in place in practice; if it
      * moved, the arrays would still be 16-byte aligned, which is all the SIMD loads assume. */
     b->nodes = mc_shrink(c.nodes, c.node_count * sizeof *c.nodes);
@@ -999,8 +1016,8 @@ static void setup_chunk(void *ctx, size_t c)
     rs->box[2 * c + 1] = cbox;
 }
 
-mcrt_status mc_bvh_build_threads(struct bvh *b, struct prim *prims, const struct aabb *bounds,
-                                 size_t n, int threads, mc_diag *d)
+mcrt_status mc_bvh_build_threads(struct bvh *b, const struct prim *prims,
+                                 const struct aabb *bounds, size_t n, int threads, mc_diag *d)
 {
     struct ref *refs;
     struct bnode *bin;
@@ -1009,7 +1026,6 @@ mcrt_status mc_bvh_build_threads(struct bvh *b, struct prim *prims, const struct
     size_t bin_count;
     struct box box = box_empty(), cbox = box_empty();
     size_t i;
-    int ok;
 
     b->nodes = NULL;
     b->node_count = 0;
@@ -1062,21 +1078,12 @@ mcrt_status mc_bvh_build_threads(struct bvh *b, struct prim *prims, const struct
         free(bin);
         return mc_fail(d, MCRT_ERR_NOMEM, "out of memory building the BVH of %zu primitives", n);
     }
-    /* The refs are now in leaf order; reuse their storage for the permutation. Permuted through
-     * a copy, the rest is given back first, and permuting before the wide nodes are made keeps
-     * the copy and the wide nodes from being resident at the same time (peak memory); permuted
-     * in place, the storage is the collapse's scratch memory. */
+    /* The refs are now in leaf order: their storage becomes the order, the primitives' indices
+     * in leaf order, which the blocks are made from; the primitives are not moved. */
     order = (uint32_t *)refs;
     for (i = 0; i < n; i++)
         order[i] = refs[i].id;
-    if (!permute_in_place(n))
-        order = mc_shrink(refs, n * sizeof *order);
-    ok = permute_prims(prims, order, (uint32_t)n);
-    if (ok)
-        ok = collapse(bin, bin_count, prims, order, permute_in_place(n) ? n * sizeof *refs : 0, b);
-    else
-        free(order);
-    if (!ok) {
+    if (!collapse(bin, bin_count, prims, order, n, n * sizeof *refs, b)) {
         free(bin);
         mc_bvh_free(b);
         return mc_fail(d, MCRT_ERR_NOMEM, "out of memory building the BVH of %zu primitives", n);
@@ -1087,13 +1094,13 @@ mcrt_status mc_bvh_build_threads(struct bvh *b, struct prim *prims, const struct
     return MCRT_OK;
 }
 
-mcrt_status mc_bvh_build_bounds(struct bvh *b, struct prim *prims, const struct aabb *bounds,
+mcrt_status mc_bvh_build_bounds(struct bvh *b, const struct prim *prims, const struct aabb *bounds,
                                 size_t n, mc_diag *d)
 {
     return mc_bvh_build_threads(b, prims, bounds, n, 0, d);
 }
 
-mcrt_status mc_bvh_build(struct bvh *b, struct prim *prims, size_t n, mc_diag *d)
+mcrt_status mc_bvh_build(struct bvh *b, const struct prim *prims, size_t n, mc_diag *d)
 {
     return mc_bvh_build_threads(b, prims, NULL, n, 0, d);
 }

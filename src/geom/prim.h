@@ -1,6 +1,6 @@
 /* prim.h: the geometric primitives (the shapes of MC_SHAPES: sphere, quad, disk, triangle) that
- * live together in one BVH. A primitive is a plain 64-byte value; the BVH reorders the scene's
- * primitive array in place. */
+ * live together in one BVH. A primitive is a plain 64-byte value; the BVH's leaves refer to the
+ * scene's primitive array by index. */
 #ifndef MCRT_PRIM_H
 #define MCRT_PRIM_H
 

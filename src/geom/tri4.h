@@ -22,8 +22,8 @@
  * degenerate (mc_prim_degenerate); the traversal tests it with mc_prim_intersect_prep. The NaN marks them at no extra
  * cost: the 4-wide test's determinant comes out NaN there. prim[lane] is the lane's index in the
  * BVH's primitive array (what a hit reports), below 2^31 (mc_bvh_build), with MC_TRI4_QUAD or'd
- * in for a quad; a leaf's primitives are consecutive there, from prim[0] of its first block. 160 bytes: the vertices' 144 and the indices' 16 keep every block's
- * vectors 16-byte aligned. */
+ * in for a quad. 160 bytes: the vertices' 144 and the indices' 16 keep every block's vectors
+ * 16-byte aligned. */
 struct tri4 {
     float v[3][3][4];
     uint32_t prim[4]; /* padding lanes: UINT32_MAX */
@@ -36,7 +36,8 @@ static inline uint32_t mc_tri4_prim(uint32_t lane_prim) { return lane_prim & ~MC
 /* Blocks that a leaf of count primitives takes. */
 static inline uint32_t mc_tri4_blocks(uint32_t count) { return (count + 3) / 4; }
 
-/* Fill the mc_tri4_blocks(count) blocks from k with the leaf prims[first .. first + count). */
-void mc_tri4_fill(struct tri4 *k, const struct prim *prims, uint32_t first, uint32_t count);
+/* Fill the mc_tri4_blocks(count) blocks from k with the leaf of the count primitives
+ * prims[ids[0]], ..., prims[ids[count - 1]], in that order. */
+void mc_tri4_fill(struct tri4 *k, const struct prim *prims, const uint32_t *ids, uint32_t count);
 
 #endif

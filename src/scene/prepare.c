@@ -134,7 +134,8 @@ mcrt_status mc_scene_prepare(struct scene *s, mc_diag *d)
         mc_bsdf_prepare(&s->materials[i]);
     if ((st = prepare_textures(s, d)) != MCRT_OK)
         return st;
-    /* Both builds reorder primitives, so lights (which index them) are made after. */
+    /* The split into static and moving primitives reorders them, so lights (which index them)
+     * are made after it. */
     st = partition(s, d);
     if (st == MCRT_OK)
         st = mc_bvh_build(&s->bvh, s->prims, s->static_count, d);
