@@ -14,10 +14,9 @@
 #     larger (bsdf sampling's fireflies: 3 standard errors of it were 1.7% of the mean, and the
 #     shift measured 1.4, 1.1, -0.1, -1.3% for seeds 1 to 4, of both signs), within 3 standard
 #     errors of it, and its est_relmse below the raw's (with --adaptive below the raw image's
-#     true relMSE: there the raw estimate reads low, 0.48 to 0.77 of the truth over seeds 1 to
-#     6, most likely as adaptive sampling gives fewer samples to the pixels whose halves
-#     happened to agree, where the denoised estimate, 0.6 to 1.5 of its truth, need not be
-#     below it);
+#     true relMSE: there the raw estimate reads low, about 0.8 of the truth, as adaptive
+#     sampling gives fewer samples to the pixels whose error came out low (render/adaptive.c),
+#     where the denoised estimate, 0.6 to 1.5 of its truth, need not be below it);
 #     the raw layer of the --passes render is the image of the same render without --denoise,
 #     and `mcrt denoise` of the --time render's EXR (which holds the render state too) gives its
 #     image again.

@@ -4,7 +4,8 @@
 # reference; its own error is known (its est_relmse) and subtracted from each render's relMSE
 # against it (the two renders are independent, so their errors' mean squares add).
 #   - For every sampler, the est_relmse of 64 spp renders (--stats) agrees with their true
-#     relMSE within [0.8, 1.25] (issue 14's target), as means over 2 seeds.
+#     relMSE within [0.8, 1.25] (issue 14's target), as means over 2 seeds; with --adaptive
+#     within [0.7, 1.25] on the two scenes without fireflies.
 #   - On the soft-shadow scene, the random sampler's relMSE falls as spp^-1 (log-log slope -1 +-
 #     0.15 from 16 to 64 spp).
 #   - --target-error E with the default sampler stops with a true relMSE within a factor 1.3 of E
@@ -64,6 +65,29 @@ for name in soft-shadows cornell glossy; do
             fail "$name, $sampler" "estimated relMSE $1 vs true $2 at 64 spp (means of 2 seeds): not within [0.8, 1.25]"
         fi
     done
+    # --adaptive: the passes after the first give each pixel samples by its estimated error
+    # (render/adaptive.c), so a pixel whose estimate came out low gets fewer samples and keeps
+    # it, and the image's estimate reads low (selection bias). Allocated by the halves' own
+    # difference, the stratified and Sobol estimates read 0.36 and 0.40 of the truth here on
+    # cornell and soft-shadows (2 seeds); by the pooled sample variance, 0.84 and 0.94 to 0.99
+    # (random 0.84, 0.95). glossy is left out: its fireflies make pixels without one yet get
+    # few samples, 0.42 to 0.53 for every sampler (uniform sampling: the check above).
+    if [ "$name" != glossy ]; then
+        for sampler in random stratified sobol; do
+            sum_est=0 sum_true=0
+            for seed in 1 2; do
+                set -- $(true_relmse "$s" --spp 64 --adaptive --sampler "$sampler" --seed "$seed")
+                sum_est=$(echo "$sum_est $1" | awk '{ print $1 + $2 }')
+                sum_true=$(echo "$sum_true $2" | awk '{ print $1 + $2 }')
+            done
+            set -- $(echo "$sum_est $sum_true" | awk '{ print $1 / 2, $2 / 2 }')
+            if echo "$1 $2" | awk '{ r = $1 / $2; exit !(r >= 0.7 && r <= 1.25) }'; then
+                ok "$name, $sampler, --adaptive: estimated relMSE $1 vs true $2 at 64 spp (means of 2 seeds), within [0.7, 1.25]"
+            else
+                fail "$name, $sampler, --adaptive" "estimated relMSE $1 vs true $2 at 64 spp (means of 2 seeds): not within [0.7, 1.25]"
+            fi
+        done
+    fi
     # The slope and --target-error on the 64x48 film.
     if ! reference "$name" 64 48; then
         fail "$name" "the reference did not render"
