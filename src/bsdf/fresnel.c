@@ -4,7 +4,7 @@
  * (Reflect, Refract, FrDielectric, FrComplex). */
 #include "bsdf/bsdf_impl.h"
 
-#include <complex.h>
+#include <math.h>
 
 float mc_fresnel_dielectric(float cos_i, float eta)
 {
@@ -33,22 +33,29 @@ float mc_fresnel_dielectric(float cos_i, float eta)
     return 0.5f * (r_par * r_par + r_perp * r_perp);
 }
 
-/* One channel of mc_fresnel_conductor: the amplitudes of the dielectric case with the complex
- * index n = η + ik (pbrt-v4 FrComplex), in double so that k in the hundreds (reflectance
- * 0.9999) keeps its digits. */
+/* One channel of mc_fresnel_conductor: |r∥|² and |r⊥|² of the complex index n = η + ik (Born
+ * and Wolf §14.2; pbrt-v4 FrComplex) in real arithmetic: with n² − sin²θi = a² − b² + 2iab, so
+ * that a² + b² = |n² − sin²θi| and a = Re √(n² − sin²θi),
+ *     |r⊥|² = (a² + b² − 2a cosθi + cos²θi) / (a² + b² + 2a cosθi + cos²θi),
+ *     |r∥|² = |r⊥|² (cos²θi (a² + b²) − 2a cosθi sin²θi + sin⁴θi)
+ *                 / (cos²θi (a² + b²) + 2a cosθi sin²θi + sin⁴θi)
+ * (Lagarde 2013, "Memo on Fresnel equations"; pbrt-v3 FrConductor). In double so that k in the
+ * hundreds (reflectance 0.9999) keeps its digits: a² is then the small difference of
+ * a² + b² ≈ k² and −(η² − k² − sin²θi). The C99 complex form it replaces computed the same with
+ * a complex square root and divisions (libm's csqrt and __divdc3): 7% of scenes/glossy-floor.mcrt's
+ * instructions, now 2% (callgrind, 80x45 at 16 spp: 250.0 M -> 237.9 M in all, the image
+ * byte-identical). */
 static float fresnel_complex(float cos_i, float eta, float k)
 {
-    double c = fmin(fmax((double)cos_i, 0.0), 1.0);
-    double complex n = (double)eta + (double)k * I, cos_t, r_par, r_perp;
+    double c = fmin(fmax((double)cos_i, 0.0), 1.0), c2 = c * c, s2 = 1.0 - c2;
+    double t0 = (double)eta * eta - (double)k * k - s2;
+    double ab = sqrt(t0 * t0 + 4.0 * (double)eta * eta * (double)k * k); /* a² + b² */
+    double a = sqrt(fmax(0.5 * (ab + t0), 0.0));
+    double t1 = ab + c2, t2 = 2.0 * c * a, t3 = c2 * ab + s2 * s2, t4 = t2 * s2, r_perp;
     if (eta == 1.0f && k == 0.0f)
         return 0.0f; /* no interface: at c = 0 both amplitudes would be 0/0 */
-    /* cosθt = √(1 − sin²θi/n²), complex: the transmitted wave is inhomogeneous (Born and Wolf
-     * §14.2). Only |r|² is used, so the branch of the square root does not matter. */
-    cos_t = csqrt(1.0 - (1.0 - c * c) / (n * n));
-    r_par = (n * c - cos_t) / (n * c + cos_t);
-    r_perp = (c - n * cos_t) / (c + n * cos_t);
-    return (float)(0.5 * (creal(r_par) * creal(r_par) + cimag(r_par) * cimag(r_par) +
-                          creal(r_perp) * creal(r_perp) + cimag(r_perp) * cimag(r_perp)));
+    r_perp = (t1 - t2) / (t1 + t2);
+    return (float)(0.5 * (r_perp + r_perp * (t3 - t4) / (t3 + t4)));
 }
 
 vec3 mc_fresnel_conductor(float cos_i, vec3 eta, vec3 k)
