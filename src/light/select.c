@@ -383,6 +383,13 @@ static int descend(const struct light_select *ls, vec3 p, vec3 n, double u, int 
 
 int mc_light_select_sample(const struct light_select *ls, vec3 p, vec3 n, double u, double *pmf)
 {
+    /* One light: nothing to choose (the integrator draws no number for it either), and neither
+     * an alias table nor a descent of the tree to make (callgrind, the Cornell box at 64x64, 16
+     * spp: 1.5% of the instructions, the image byte-identical without them). */
+    if (ls->light_count == 1) {
+        *pmf = 1.0;
+        return 0;
+    }
     if (ls->kind == LIGHT_SELECT_POWER) {
         float f;
         int li = mc_alias_sample(&ls->power, u, &f);
@@ -397,6 +404,8 @@ double mc_light_select_pmf(const struct light_select *ls, vec3 p, vec3 n, int li
     double pmf;
     if (light < 0)
         return 0.0;
+    if (ls->light_count == 1)
+        return light == 0 ? 1.0 : 0.0;
     if (ls->kind == LIGHT_SELECT_POWER)
         return mc_alias_pmf(&ls->power, (size_t)light);
     descend(ls, p, n, 0.0, light, &pmf);
