@@ -37,6 +37,24 @@ reference() {
     ref_est=$(json_num "$tmp/r.json" est_relmse)
 }
 
+# est_vs_true LABEL LOW OPTIONS...: $s rendered at 64 spp with OPTIONS for seeds 1 and 2; ok
+# when the mean est_relmse over the mean true relMSE is within [LOW, 1.25].
+est_vs_true() {
+    label=$1 low=$2
+    shift 2
+    sums="0 0"
+    for seed in 1 2; do
+        sums=$(echo "$sums $(true_relmse "$s" --spp 64 "$@" --seed "$seed")" |
+            awk '{ print $1 + $3, $2 + $4 }')
+    done
+    set -- $(echo "$sums" | awk '{ print $1 / 2, $2 / 2 }')
+    if echo "$1 $2 $low" | awk '{ r = $1 / $2; exit !(r >= $3 && r <= 1.25) }'; then
+        ok "$label: estimated relMSE $1 vs true $2 at 64 spp (means of 2 seeds), within [$low, 1.25]"
+    else
+        fail "$label" "estimated relMSE $1 vs true $2 at 64 spp (means of 2 seeds): not within [$low, 1.25]"
+    fi
+}
+
 for name in soft-shadows cornell glossy; do
     s="$tmp/$name.mcrt"
     if ! reference "$name" 128 96; then
@@ -52,18 +70,7 @@ for name in soft-shadows cornell glossy; do
     # render's est/true varies where rare bright paths land in a few pixels (0.86 to 1.56 for
     # one 64-spp 64x48 Cornell box over seeds), hence the means.
     for sampler in random stratified sobol; do
-        sum_est=0 sum_true=0
-        for seed in 1 2; do
-            set -- $(true_relmse "$s" --spp 64 --sampler "$sampler" --seed "$seed")
-            sum_est=$(echo "$sum_est $1" | awk '{ print $1 + $2 }')
-            sum_true=$(echo "$sum_true $2" | awk '{ print $1 + $2 }')
-        done
-        set -- $(echo "$sum_est $sum_true" | awk '{ print $1 / 2, $2 / 2 }')
-        if echo "$1 $2" | awk '{ r = $1 / $2; exit !(r >= 0.8 && r <= 1.25) }'; then
-            ok "$name, $sampler: estimated relMSE $1 vs true $2 at 64 spp (means of 2 seeds), within [0.8, 1.25]"
-        else
-            fail "$name, $sampler" "estimated relMSE $1 vs true $2 at 64 spp (means of 2 seeds): not within [0.8, 1.25]"
-        fi
+        est_vs_true "$name, $sampler" 0.8 --sampler "$sampler"
     done
     # --adaptive: the passes after the first give each pixel samples by its estimated error
     # (render/adaptive.c), so a pixel whose estimate came out low gets fewer samples and keeps
@@ -74,18 +81,7 @@ for name in soft-shadows cornell glossy; do
     # few samples, 0.42 to 0.53 for every sampler (uniform sampling: the check above).
     if [ "$name" != glossy ]; then
         for sampler in random stratified sobol; do
-            sum_est=0 sum_true=0
-            for seed in 1 2; do
-                set -- $(true_relmse "$s" --spp 64 --adaptive --sampler "$sampler" --seed "$seed")
-                sum_est=$(echo "$sum_est $1" | awk '{ print $1 + $2 }')
-                sum_true=$(echo "$sum_true $2" | awk '{ print $1 + $2 }')
-            done
-            set -- $(echo "$sum_est $sum_true" | awk '{ print $1 / 2, $2 / 2 }')
-            if echo "$1 $2" | awk '{ r = $1 / $2; exit !(r >= 0.7 && r <= 1.25) }'; then
-                ok "$name, $sampler, --adaptive: estimated relMSE $1 vs true $2 at 64 spp (means of 2 seeds), within [0.7, 1.25]"
-            else
-                fail "$name, $sampler, --adaptive" "estimated relMSE $1 vs true $2 at 64 spp (means of 2 seeds): not within [0.7, 1.25]"
-            fi
+            est_vs_true "$name, $sampler, --adaptive" 0.7 --adaptive --sampler "$sampler"
         done
     fi
     # The slope and --target-error on the 64x48 film.

@@ -269,10 +269,13 @@ static void bins_clear(struct bins *b, int nbins)
         }
 }
 
-/* Add the ref lo, hi to b, i its bins. Written out per axis: -O2 does not unroll the loop, whose
- * index arithmetic then costs as much as the update. */
-static inline void bin_ref(struct bins *b, f4 lo, f4 hi, const int32_t *i)
+/* Add the ref r to b, binned as bn says. Written out per axis: -O2 does not unroll the loop,
+ * whose index arithmetic then costs as much as the update. */
+static inline void bin_ref(struct bins *b, const struct binning *bn, const struct ref *r)
 {
+    f4 lo = f4_load3(r->lo), hi = f4_load(r->hi);
+    int32_t i[4];
+    bins_of(f4_add(lo, hi), bn->lo, bn->scale, bn->top, i);
     b->lo[0][i[0]] = f4_min(b->lo[0][i[0]], lo);
     b->hi[0][i[0]] = f4_max(b->hi[0][i[0]], hi);
     b->cnt[0][i[0]]++;
@@ -312,22 +315,13 @@ static void bin_refs(struct bins *b, const struct binning *bn, const struct ref 
         struct bins b2;
         bins_clear(&b2, bn->nbins);
         for (; k + 1 < end; k += 2) {
-            f4 lo = f4_load3(refs[k].lo), hi = f4_load(refs[k].hi);
-            f4 lo2 = f4_load3(refs[k + 1].lo), hi2 = f4_load(refs[k + 1].hi);
-            int32_t i[4], i2[4];
-            bins_of(f4_add(lo, hi), bn->lo, bn->scale, bn->top, i);
-            bins_of(f4_add(lo2, hi2), bn->lo, bn->scale, bn->top, i2);
-            bin_ref(b, lo, hi, i);
-            bin_ref(&b2, lo2, hi2, i2);
+            bin_ref(b, bn, &refs[k]);
+            bin_ref(&b2, bn, &refs[k + 1]);
         }
         bins_merge(b, &b2, bn->nbins);
     }
-    for (; k < end; k++) {
-        f4 lo = f4_load3(refs[k].lo), hi = f4_load(refs[k].hi);
-        int32_t i[4];
-        bins_of(f4_add(lo, hi), bn->lo, bn->scale, bn->top, i);
-        bin_ref(b, lo, hi, i);
-    }
+    for (; k < end; k++)
+        bin_ref(b, bn, &refs[k]);
 }
 
 /* Run fn(ctx, c) for c = 0..n-1 on up to `threads` threads (the caller's included), taking the
