@@ -3,7 +3,9 @@
  * "Nonlinearly Weighted First-order Regression for Denoising Monte Carlo Renderings", EGSR).
  *
  * It takes the two independent half buffers of a render (render/film.h: A and B, each the mean
- * of half of every pixel's samples) and, per half, feature planes (albedo, normal, depth...):
+ * of half of every pixel's samples) and, per half, feature planes (albedo, normal, depth...).
+ * A pixel whose halves disagree far beyond its neighbours' (a firefly) has its bright half set to
+ * the other's before the steps below, and the difference spread back after them (firefly.h):
  *   1. each feature of one half is filtered by NL-means with weights from the other half's
  *      (cross prefiltering, NFOR §5.1), so that the features' own noise is filtered and what
  *      filters A stays independent of A;

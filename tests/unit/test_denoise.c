@@ -3,7 +3,8 @@
  * of standard deviation SIGMA, with noise-free or noisy features. Checks: a flat image stays flat
  * and keeps its mean, a step edge and a one-pixel bright line keep their contrast, the estimated
  * error is unbiased and within a factor 2 of the true one over 24 noise seeds, the result is the
- * same for 1, 2 and 3 threads, and mcrt_denoise_file refuses an input layer holding a NaN.
+ * same for 1, 2 and 3 threads, fireflies are found and their energy kept without a halo, and
+ * mcrt_denoise_file refuses an input layer holding a NaN.
  * Each tolerance is derived from the noise, next to its check. With an argument FILE it also
  * writes the flat case's result there, so that tests/denoise.sh can compare the bits of the SSE2
  * copy (test_denoise_sse) and the AVX2 one. */
@@ -15,6 +16,7 @@
 #include <unistd.h>
 
 #include "core/rng.h"
+#include "denoise/firefly.h"
 #include "denoise/nfor.h"
 #include "io/image.h"
 #include "mcrt.h"
@@ -87,6 +89,83 @@ static double relmse(const struct bufs *b, int est)
         s += (est ? b->mse[i] : (b->rgb[i] - b->truth[i]) * (b->rgb[i] - b->truth[i]))
              / (b->truth[i] * b->truth[i] + 0.01);
     return s / (N * 3);
+}
+
+/* Fireflies (denoise/firefly.h): flat halves of Gaussian noise (b) and the same halves with five
+ * one-pixel outliers in one half each (c). mc_firefly_split finds those five, in their halves,
+ * and nothing in b: a firefly's var exceeds 16 times its window's, which the channel mean of
+ * Gaussian noise does with probability P(χ²₃ > 48) = 2e-10 a pixel. The denoised c less the
+ * denoised b is what the fireflies did to the image: its sum is their energy (the outliers' excess
+ * over 2, the image being the halves' mean), within what replacing each outlier's half by the
+ * other half changes (that difference, of standard deviation √2·SIGMA a channel, times a column
+ * sum of the filter near 1: 4 standard deviations over the 15 channels), and no pixel moves by
+ * more than a raw pixel's standard error SIGMA/√2 (no halo above the noise). Without the split the
+ * regression put a blotch of the outliers' energy around each. */
+static void fireflies(struct bufs *b, struct bufs *c)
+{
+    static const int at[5][3] = {{10, 10, 0}, {40, 30, 0}, {30, 5, 1}, {55, 40, 1}, {2, 24, 0}};
+    static const float excess[3] = {20.0f, 8.0f, 3.0f};
+    static float v[N], vbox[N], m[N], mbox[N], a[N * 3], bb[N * 3];
+    static float f0[N];
+    struct firefly *ff;
+    double energy = 0.0, moved = 0.0, peak = 0.0, tol;
+    int i, k, c3, count, x, y, dx, dy, found;
+    for (i = 0; i < N * 3; i++)
+        b->truth[i] = 0.5f;
+    for (i = 0; i < N; i++)
+        f0[i] = 0.3f;
+    make(b, f0, 0.05, 4);
+    memcpy(c, b, sizeof *c);
+    for (k = 0; k < 5; k++)
+        for (c3 = 0; c3 < 3; c3++) {
+            c->half[at[k][2]][(at[k][1] * W + at[k][0]) * 3 + c3] += excess[c3];
+            energy += 0.5 * excess[c3];
+        }
+    for (k = 0; k < 2; k++) {
+        const struct bufs *s = k ? c : b;
+        memcpy(a, s->half[0], sizeof a);
+        memcpy(bb, s->half[1], sizeof bb);
+        for (i = 0; i < N; i++)
+            for (v[i] = m[i] = 0.0f, c3 = 0; c3 < 3; c3++) {
+                v[i] += (a[3 * i + c3] - bb[3 * i + c3]) * (a[3 * i + c3] - bb[3 * i + c3]) / 6.0f;
+                m[i] += (a[3 * i + c3] + bb[3 * i + c3]) / 6.0f;
+            }
+        for (y = 0; y < H; y++)
+            for (x = 0; x < W; x++) {
+                float sum = 0.0f, msum = 0.0f;
+                for (dy = -4; dy <= 4; dy++)
+                    for (dx = -4; dx <= 4; dx++) {
+                        int xx = x + dx < 0 ? 0 : x + dx >= W ? W - 1 : x + dx;
+                        int yy = y + dy < 0 ? 0 : y + dy >= H ? H - 1 : y + dy;
+                        sum += v[yy * W + xx];
+                        msum += m[yy * W + xx];
+                    }
+                vbox[y * W + x] = sum / 81.0f;
+                mbox[y * W + x] = msum / 81.0f;
+            }
+        T_CHECK(mc_firefly_split(a, bb, v, vbox, mbox, 81, W, H, &ff, &count) == 0, "split");
+        if (!k) {
+            T_CHECK(count == 0, "fireflies: %d found in Gaussian noise", count);
+        } else {
+            for (found = 0, i = 0; i < count; i++)
+                for (x = 0; x < 5; x++)
+                    found += ff[i].pixel == at[x][1] * W + at[x][0] && ff[i].half == at[x][2];
+            T_CHECK(count == 5 && found == 5, "fireflies: %d found, %d of them the 5 put in",
+                    count, found);
+        }
+        free(ff);
+    }
+    T_CHECK(run(b, 2) == MCRT_OK && run(c, 2) == MCRT_OK, "denoise");
+    for (i = 0; i < N * 3; i++) {
+        double dv = (double)c->rgb[i] - (double)b->rgb[i];
+        moved += dv;
+        peak = fabs(dv) > peak ? fabs(dv) : peak;
+    }
+    tol = 4.0 * sqrt(15.0) * sqrt(2.0) * SIGMA;
+    T_NOTE("fireflies: energy %.4g kept as %.4g; the largest change of a pixel %.4g", energy,
+           moved, peak);
+    T_NEAR(moved, energy, tol, "fireflies: their energy is kept");
+    T_CHECK(peak < SIGMA / sqrt(2.0), "fireflies: a pixel moved by %.4g", peak);
 }
 
 /* mcrt_denoise_file refuses an input with a value that is not finite: exit status 2 in mcrt
@@ -259,6 +338,7 @@ int main(int argc, char **argv)
     for (i = 0; i < N * 3 && isfinite(b.rgb[i]); i++)
         ;
     T_CHECK(i == N * 3, "no NaN");
+    fireflies(&b, &c);
     not_finite_input();
     return t_done();
 }
