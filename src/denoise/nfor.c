@@ -1160,7 +1160,7 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
             mse_estimate(A, B, fa, fb, la, lb, img[VAR], n3, mse);
         /* The fireflies' excesses back (firefly.h), by the standard error of the mean, from a
          * half's variance over the REG_VAR_R box. */
-        for (i = 0; i < n3; i++)
+        for (i = 0; nff > 0 && i < n3; i++)
             img[TMP][i] = sqrtf(0.5f * img[VARG][i]);
         mc_firefly_spread(ff, nff, img[TMP], w, h, rgb, mse);
         /* The emission back, fitted along the lights' edges (light_edge.h), and its variance:
