@@ -66,16 +66,19 @@ static const float reg_k[2] = {0.5f, 2.0f};
 #define MAX_DIM (3 + MC_NFOR_MAX_FEATURES) /* regression columns: 1, x, y, the features */
 #define PAD (REG_R + REG_F) /* the widest reach of a patch around a window pixel */
 
-/* What NL-means weights are computed from: gc interleaved channels and their variances (already
- * scaled by the guide's variance scale), each copied with a border of PAD pixels (the image's
- * edge pixels repeated, pad_copy), so that a patch around any window pixel is read without
- * bounds checks; patch radius f, bandwidth k. */
+/* What NL-means weights are computed from: gc channels and their variances (already scaled by
+ * the guide's variance scale), each copied with a border of PAD pixels (the image's edge pixels
+ * repeated, pad_copy), so that a patch around any window pixel is read without bounds checks;
+ * patch radius f, bandwidth k. A guide that weights each channel by its own distance (features)
+ * has its channels interleaved; one that weights all by their mean distance (colours) has each
+ * padded row as gc planes one after the other, so that the mean is taken in the same vectorised
+ * pass as the distances (patch_dist). */
 struct guide {
     const float *img, *var;
     int gc, f;
     float k;
-    int each; /* each channel weighted by its own distance (features), else all by the mean of
-                 the channels' distances */
+    int each; /* each channel weighted by its own distance, interleaved; else all by the mean of
+                 the channels' distances, planar rows */
 };
 
 /* The image's size, the threads the tiles run on, and a tile's failure to get memory. */
@@ -133,22 +136,22 @@ struct pool {
 
 static int clampi(int v, int lo, int hi) { return v < lo ? lo : v > hi ? hi : v; }
 
-/* src (nc channels, width × height) copied times scale into dst with a border of PAD pixels on
- * every side, each border pixel a copy of the nearest edge pixel. */
-static void pad_copy(const float *src, int nc, int width, int height, float scale, float *dst)
+/* src (nc interleaved channels, width × height) copied times scale into dst with a border of PAD
+ * pixels on every side, each border pixel a copy of the nearest edge pixel; each padded row's
+ * channels interleaved, or, planar, as nc planes one after the other (struct guide). */
+static void pad_copy(const float *src, int nc, int planar, int width, int height, float scale,
+                     float *dst)
 {
-    size_t pw = (size_t)(width + 2 * PAD) * (size_t)nc, rw = (size_t)width * (size_t)nc, i;
+    size_t pw = (size_t)(width + 2 * PAD), rw = (size_t)width * (size_t)nc;
     int y, x, c;
     for (y = 0; y < height + 2 * PAD; y++) {
-        const float *s = src + (size_t)clampi(y - PAD, 0, height - 1) * rw, *last = s + rw - nc;
-        float *d = dst + (size_t)y * pw;
-        for (x = 0; x < PAD; x++)
-            for (c = 0; c < nc; c++) {
-                d[(size_t)x * nc + (size_t)c] = s[c] * scale;
-                d[PAD * (size_t)nc + rw + (size_t)x * nc + (size_t)c] = last[c] * scale;
-            }
-        for (i = 0; i < rw; i++)
-            d[PAD * (size_t)nc + i] = s[i] * scale;
+        const float *s = src + (size_t)clampi(y - PAD, 0, height - 1) * rw;
+        float *d = dst + (size_t)y * pw * (size_t)nc;
+        for (x = 0; x < width + 2 * PAD; x++) {
+            const float *sp = s + (size_t)clampi(x - PAD, 0, width - 1) * (size_t)nc;
+            for (c = 0; c < nc; c++)
+                d[planar ? (size_t)c * pw + (size_t)x : (size_t)x * nc + (size_t)c] = sp[c] * scale;
+        }
     }
 }
 
@@ -206,28 +209,39 @@ static MC_ALWAYS_INLINE void box_sum(const float *in, size_t step, int taps, int
         box_sum_taps(in, step, taps, n, out);
 }
 
-/* out[x] = the mean of the gc channels of pixel x of row, x < n (into another buffer: in
- * place, GCC's vectorised copy would find the two overlapping and run the scalar one). */
-static MC_ALWAYS_INLINE void channel_mean_n(const float *restrict row, int gc, int n,
-                                            float *restrict out)
+/* The NL-means distance of one channel of two pixels, values p and q, variances vp and vq. */
+static MC_ALWAYS_INLINE float pair_dist(float p, float q, float vp, float vq, float kk)
 {
-    float inv = 1.0f / (float)gc;
-    int x, c;
-    for (x = 0; x < n; x++) {
-        float s = row[x * gc];
-        for (c = 1; c < gc; c++)
-            s += row[x * gc + c];
-        out[x] = s * inv;
-    }
+    float diff = p - q, dd = (diff * diff - (vp + (vp < vq ? vp : vq))) / (DIST_EPS + kk * (vp + vq));
+    return dd < DIST_CLAMP ? dd : DIST_CLAMP;
 }
 
-/* channel_mean_n, unrolled for colour guides. */
-static MC_ALWAYS_INLINE void channel_mean(const float *row, int gc, int n, float *out)
+/* out[x] = the mean over the gc planes (plane floats apart) of the channels' distances of pixel
+ * x of ip against iq, x < n; three channels spelt out, as GCC vectorises an inner loop over the
+ * channels instead of the pixels. */
+static MC_ALWAYS_INLINE void mean_dist(const float *ip, const float *iq, const float *vp,
+                                       const float *vq, size_t plane, int gc, int n, float kk,
+                                       float *restrict out)
 {
+    const size_t p2 = 2 * plane;
+    float inv = 1.0f / (float)gc;
+    int x, c;
     if (gc == 3)
-        channel_mean_n(row, 3, n, out);
+        for (x = 0; x < n; x++) {
+            float s = pair_dist(ip[x], iq[x], vp[x], vq[x], kk);
+            s += pair_dist(ip[plane + x], iq[plane + x], vp[plane + x], vq[plane + x], kk);
+            s += pair_dist(ip[p2 + x], iq[p2 + x], vp[p2 + x], vq[p2 + x], kk);
+            out[x] = s * inv;
+        }
     else
-        channel_mean_n(row, gc, n, out);
+        for (x = 0; x < n; x++) {
+            float s = pair_dist(ip[x], iq[x], vp[x], vq[x], kk);
+            for (c = 1; c < gc; c++) {
+                size_t i = (size_t)c * plane + (size_t)x;
+                s += pair_dist(ip[i], iq[i], vp[i], vq[i], kk);
+            }
+            out[x] = s * inv;
+        }
 }
 
 /* Which rows of a tile patch_dist computes: out[y] for the tile's row y, and in[y] for the row
@@ -256,30 +270,28 @@ static void row_mask_reach(struct row_mask *m, int th, int f)
  * left as they were). scratch holds scratch_floats(g, x1 - x0) floats.
  * Pixels outside the image read the padded guide's copies of its border. Each loop runs along
  * rows of contiguous floats (a row's pixels and their channels), so that it vectorises. */
-static MC_ALWAYS_INLINE void patch_dist(const struct guide *g, int width, int x0, int y0, int x1, int y1,
-                       const struct row_mask *rows, int dx, int dy, float *wt, float *scratch)
+static MC_ALWAYS_INLINE void patch_dist(const struct guide *g, int width, int x0, int y0, int x1,
+                                         int y1, const struct row_mask *rows, int dx, int dy,
+                                         float *wt, float *scratch)
 {
     int f = g->f, gc = g->gc, oc = g->each ? gc : 1; /* the channels of the distances */
     int tw = x1 - x0, th = y1 - y0, ph = th + 2 * f;
-    int rw = (tw + 2 * f) * gc, tr = tw * oc, y, i, j;
-    size_t stride = (size_t)(width + 2 * PAD) * (size_t)gc;
-    ptrdiff_t off = (ptrdiff_t)dy * (ptrdiff_t)stride + (ptrdiff_t)dx * gc;
+    int rw = (tw + 2 * f) * oc, tr = tw * oc, y, i, j;
+    size_t plane = (size_t)(width + 2 * PAD), stride = plane * (size_t)gc;
+    ptrdiff_t off = (ptrdiff_t)dy * (ptrdiff_t)stride + (ptrdiff_t)dx * oc;
     float *dist = scratch, *tmp = scratch + (size_t)rw * ph, *col = tmp + (size_t)tr * ph;
-    float *line = col + tr; /* a row's distances of every channel, for their mean */
     float norm = 1.0f / (float)((2 * f + 1) * (2 * f + 1)), kk = g->k * g->k;
     for (y = 0; y < ph; y++) {
-        size_t p = (size_t)(y0 - f + y + PAD) * stride + (size_t)(x0 - f + PAD) * gc;
+        size_t p = (size_t)(y0 - f + y + PAD) * stride + (size_t)(x0 - f + PAD) * (size_t)oc;
         const float *ip = g->img + p, *iq = ip + off, *vpp = g->var + p, *vqp = vpp + off;
-        float *dr = g->each ? dist + (size_t)y * rw : line;
+        float *dr = dist + (size_t)y * rw;
         if (rows && !rows->in[y])
             continue;
-        for (i = 0; i < rw; i++) {
-            float vp = vpp[i], vq = vqp[i], diff = ip[i] - iq[i];
-            float dd = (diff * diff - (vp + (vp < vq ? vp : vq))) / (DIST_EPS + kk * (vp + vq));
-            dr[i] = dd < DIST_CLAMP ? dd : DIST_CLAMP;
-        }
         if (!g->each)
-            channel_mean(line, gc, tw + 2 * f, dist + (size_t)y * rw);
+            mean_dist(ip, iq, vpp, vqp, plane, gc, rw, kk, dr);
+        else
+            for (i = 0; i < rw; i++)
+                dr[i] = pair_dist(ip[i], iq[i], vpp[i], vqp[i], kk);
     }
     /* The box filter over the patch, separably: rows into tmp, then columns. */
     for (y = 0; y < ph; y++)
@@ -305,11 +317,12 @@ static MC_ALWAYS_INLINE void weights(float *wt, int n, int centre)
         wt[i] = wt[i] < MIN_WEIGHT ? MIN_WEIGHT : wt[i];
 }
 
-/* patch_dist's scratch for tiles up to tw wide and MC_TILE high. */
+/* patch_dist's scratch for tiles up to tw wide and MC_TILE high: the distances of the rows
+ * read, their box sums along the rows and a row's along the columns. */
 static size_t scratch_floats(const struct guide *g, int tw)
 {
     size_t f2 = (size_t)(2 * g->f), w = (size_t)tw;
-    return ((2 * w + f2) * (MC_TILE + f2) + 2 * w + f2) * (size_t)g->gc;
+    return ((2 * w + f2) * (MC_TILE + f2) + w) * (size_t)g->gc;
 }
 
 /* Run fn over the tiles of the image on the pool's threads; with bands, over bands of MC_TILE
@@ -849,7 +862,7 @@ static mcrt_status regress(struct pool *pl, const struct guide *g, const float *
             in[i * REG_C + (size_t)c] = col[i * 3 + (size_t)c];
         in[i * REG_C + 3] = probe(i);
     }
-    pad_copy(in, REG_C, pl->width, pl->height, 1.0f, img);
+    pad_copy(in, REG_C, 0, pl->width, pl->height, 1.0f, img);
     st = run(pl, 1, TILE_FN(reg_band), &j, d);
     merge_tiles(pl, j.acc, sum);
     for (i = 0; i < n; i++) {
@@ -1046,8 +1059,8 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
         size_t p = 3 * (size_t)ff[i].pixel;
         img[VAR][p] = img[VAR][p + 1] = img[VAR][p + 2] = 0.0f;
     }
-    pad_copy(A, 3, w, h, 1.0f, pad[PA]);
-    pad_copy(B, 3, w, h, 1.0f, pad[PB]);
+    pad_copy(A, 3, 1, w, h, 1.0f, pad[PA]);
+    pad_copy(B, 3, 1, w, h, 1.0f, pad[PB]);
 
     /* 1. Cross prefiltering of the features (NFOR §5.1): A's feature with weights from B's, whose
      * variance, that of a half, is (f_A − f_B)²/2. */
@@ -1071,9 +1084,9 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
             for (i = 0; i < n; i++)
                 fv[i * nf + f] = fvars[i];
         }
-        pad_copy(fv, nf, w, h, 1.0f, gvar);
+        pad_copy(fv, nf, 0, w, h, 1.0f, gvar);
         for (half = 0; half < 2 && st == MCRT_OK; half++) {
-            pad_copy(half ? fa : fb, nf, w, h, 1.0f, gimg);
+            pad_copy(half ? fa : fb, nf, 0, w, h, 1.0f, gimg);
             g.img = gimg;
             g.var = gvar;
             g.gc = nf;
@@ -1084,7 +1097,7 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
             for (f = 0; f < nf; f++) {
                 for (i = 0; i < n; i++)
                     pre[half][f][i] = out[i * nf + f];
-                pad_copy(pre[half][f], 1, w, h, 1.0f, (float *)cpre[half][f]);
+                pad_copy(pre[half][f], 1, 0, w, h, 1.0f, (float *)cpre[half][f]);
             }
         }
         free(pb);
@@ -1093,9 +1106,9 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
 
     /* 2. Each half regressed on the other half's features with the other half's weights, for
      * two bandwidths, with the leverages of the results (regress); 3. the choice between them. */
-    pad_copy(img[VARG], 3, w, h, 1.0f, pad[PVAR]);
-    pad_copy(img[VARS], 3, w, h, 0.5f, pad[PVARM]);
-    pad_copy(img[MEAN], 3, w, h, 1.0f, pad[PMEAN]);
+    pad_copy(img[VARG], 3, 1, w, h, 1.0f, pad[PVAR]);
+    pad_copy(img[VARS], 3, 1, w, h, 0.5f, pad[PVARM]);
+    pad_copy(img[MEAN], 3, 1, w, h, 1.0f, pad[PMEAN]);
     g.gc = 3;
     g.f = REG_F;
     g.k = 1.0f; /* the distances, to which each bandwidth applies (regress) */
