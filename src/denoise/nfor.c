@@ -718,6 +718,11 @@ static MC_ALWAYS_INLINE void fit_eval(struct window *v, int nd, float beta[2][MA
     }
 }
 
+/* The offsets whose distances reg_tile_body computes for the whole tile before it copies them into
+ * the fitted pixels' windows: eight floats of a window a store rather than one float a cache line
+ * (the copy had been 2.6% of the regression's samples, perf). */
+enum { OFF_BLOCK = 8 };
+
 static MC_ALWAYS_INLINE void reg_tile_body(void *ctx, struct tile_worker *w, int x0, int y0, int x1,
                                         int y1)
 {
@@ -742,9 +747,10 @@ static MC_ALWAYS_INLINE void reg_tile_body(void *ctx, struct tile_worker *w, int
     if (nfit == 0)
         return;
     row_mask_reach(&rows, th, j->g->f);
-    /* The fitted pixels' window distances, NWP each, then a tile of one offset's and the
-     * patches' scratch. */
-    dist = mc_malloc(((size_t)nfit * NWP + np + scratch_floats(j->g, REG_W)) * sizeof *dist);
+    /* The fitted pixels' window distances, NWP each, then OFF_BLOCK tiles of an offset's each and
+     * the patches' scratch. */
+    dist = mc_malloc(((size_t)nfit * NWP + OFF_BLOCK * np + scratch_floats(j->g, REG_W))
+                     * sizeof *dist);
     acc = mc_calloc(2 * (REG_C + 1) * npl, sizeof *acc);
     v = mc_malloc(sizeof *v);
     if (!dist || !acc || !v) {
@@ -756,14 +762,19 @@ static MC_ALWAYS_INLINE void reg_tile_body(void *ctx, struct tile_worker *w, int
     }
     window_init(v);
     /* Every offset's distances for the tile's rows with fitted pixels, then per fitted pixel
-     * its window's. */
-    for (o = 0, dy = -R; dy <= R; dy++)
-        for (dx = -R; dx <= R; dx++, o++) {
-            float *t = dist + (size_t)nfit * NWP;
-            patch_dist(j->g, width, x0, y0, x1, y1, &rows, dx, dy, t, t + np);
-            for (i = 0; i < nfit; i++)
-                dist[(size_t)i * NWP + (size_t)o] = t[fit[i]];
+     * its window's, OFF_BLOCK offsets at a time. */
+    for (o = 0; o < NW; o += OFF_BLOCK) {
+        int nb = NW - o < OFF_BLOCK ? NW - o : OFF_BLOCK, b;
+        float *t = dist + (size_t)nfit * NWP;
+        for (b = 0; b < nb; b++)
+            patch_dist(j->g, width, x0, y0, x1, y1, &rows, (o + b) % SIDE - R, (o + b) / SIDE - R,
+                       t + (size_t)b * np, t + OFF_BLOCK * np);
+        for (i = 0; i < nfit; i++) {
+            float *di = dist + (size_t)i * NWP + (size_t)o;
+            for (b = 0; b < nb; b++)
+                di[b] = t[(size_t)b * np + (size_t)fit[i]];
         }
+    }
     for (i = 0; i < nfit; i++) {
         double M[2][MAX_DIM * MAX_DIM], B[2][MAX_DIM * REG_C];
         float beta[2][MAX_DIM * REG_C];
