@@ -222,6 +222,11 @@ typedef struct mcrt_stats {
     /* The raw (not denoised) image's est_relmse, equal to est_relmse without opt.denoise. */
     double est_relmse_raw;
     double denoise_seconds; /* the denoiser's part of seconds; 0 without opt.denoise */
+    /* With opt.denoise, est_relmse's own standard deviation from one render to the next: its
+     * per-pixel terms are, up to the filter's error, products of the two halves' independent
+     * noises, whose variances it sums (the README's denoiser section). It does not cover what
+     * neither half sampled. NaN without opt.denoise. */
+    double est_relmse_sd;
 } mcrt_stats;
 /* Facts about the last run (all zero before one), into the first out_size bytes of out:
  * pass sizeof *out. */
@@ -255,10 +260,12 @@ void mcrt_render_free(mcrt_render *r);
  * depth.A, depth.B, emission.A, emission.B), all of one size. out (EXR) gets the denoised image
  * as its RGB and the layer "raw", written to a temporary file renamed when complete. threads 0:
  * all cores. est_raw and est_denoised, when not NULL, get the estimated relMSE of the raw and the
- * denoised image. On failure a message "in: what is wrong" is written into error (error_size
+ * denoised image, est_denoised_sd the latter's own standard deviation (as mcrt_stats'
+ * est_relmse_sd). On failure a message "in: what is wrong" is written into error (error_size
  * bytes) and out is left as it was. */
 mcrt_status mcrt_denoise_file(const char *in, const char *out, int threads, double *est_raw,
-                              double *est_denoised, char *error, size_t error_size);
+                              double *est_denoised, double *est_denoised_sd, char *error,
+                              size_t error_size);
 
 typedef struct mcrt_diff_options {
     size_t size;            /* sizeof(mcrt_diff_options), set by mcrt_diff_options_init */

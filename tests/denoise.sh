@@ -5,6 +5,8 @@
 #     than a factor 2 beyond what the raw image's own estimate misses (see below); the truth
 #     measured against a 1024 spp render of another seed with the reference's own estimated
 #     relMSE subtracted (independent errors: their mean squares add), as in tests/error.sh.
+#   - The estimate's own standard deviation (est_relmse_sd) matches its scatter about the truth
+#     over ten seeds of the Cornell box (128x128, 16 spp; see below).
 #   - Energy: the denoised image's mean is within 1% of the raw's (same renders).
 #   - Consistency: at 1024 spp (a 32x24 Cornell box), the denoised image equals the raw one within
 #     the raw's own noise: their relMSE against each other at most twice the raw's est_relmse
@@ -78,6 +80,36 @@ if error cornell 160 1 2 3; then
 else
     fail cornell "a render failed"
 fi
+# The estimate's own standard deviation (est_relmse_sd, the terms' variances summed): over ten
+# seeds of the Cornell box at 128² and 16 spp, z = (est − true)/sd has a spread (the sample
+# standard deviation of the ten) that ten draws of a unit normal exceed or fall short of with
+# probability 0.001 each: (χ²₉ quantiles 0.001 and 0.999 over 9)^½ = 0.36 to 1.82; 2 or 3 times
+# too small or too large an sd fails. The mean of z is left free: the estimate's deficit at the
+# light's edges (the README's denoiser section) shifts it (-0.90, with a spread of 1.01, over ten
+# seeds of the 160² film of make bench-denoise). The truth has the reference's own estimated
+# relMSE subtracted, as in error(); what is left of its noise is common to all seeds: it moves
+# the mean, not the spread.
+film cornell 128 128 >"$tmp/sd.mcrt"
+if "$MCRT" --quiet --spp 1024 --seed 99 -o "$tmp/sdref.pfm" --stats "$tmp/sdref.json" \
+    "$tmp/sd.mcrt"; then
+    zs=$(stat "$tmp/sdref.json" est_relmse)
+    for seed in 1 2 3 4 5 6 7 8 9 10; do
+        "$MCRT" --quiet --spp 16 --seed "$seed" --denoise -o "$tmp/sd.pfm" --stats "$tmp/sd.json" \
+            "$tmp/sd.mcrt" || break
+        zs="$zs $(stat "$tmp/sd.json" est_relmse) $(stat "$tmp/sd.json" est_relmse_sd) $(field relMSE "$tmp/sd.pfm" "$tmp/sdref.pfm")"
+    done
+    set -- $(echo "$zs" | awk '{ for (i = 2; i + 2 <= NF; i += 3) { z = ($i - ($(i + 2) - $1)) / $(i + 1)
+        s += z; ss += z * z; n++ }
+        if (n < 10) { print "none"; exit } m = s / n; printf "%.2f %.2f\n", m, sqrt((ss - n * m * m) / (n - 1)) }')
+    if [ "$1" != none ] && echo "$2" | awk '{ exit !($1 >= 0.36 && $1 <= 1.82) }'; then
+        ok "est_relmse_sd: (est - true)/sd over ten seeds has mean $1 and spread $2, within 0.36-1.82"
+    else
+        fail "est_relmse_sd" "(est - true)/sd over ten seeds: mean ${1:-?}, spread ${2:-?}, not within 0.36-1.82"
+    fi
+else
+    fail "est_relmse_sd" "the reference render failed"
+fi
+
 # The spheres: the caustic under the glass sphere is carried by paths so rare at 16 spp that
 # both halves mostly miss them, so that the raw image's own estimate is 0.1 of its truth here
 # (film.h; the README's error-estimate table). No estimate from the halves sees all of that

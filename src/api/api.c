@@ -502,8 +502,9 @@ static const float *denoise_inputs(const mcrt_render *r, float *buf, const float
     return buf + (size_t)(DENOISE_IMAGES - 1) * n3;
 }
 
-/* r->rgb denoised, the raw image kept in r->raw; *est the denoised image's estimated relMSE. */
-static mcrt_status denoise_render(mcrt_render *r, int threads, double *est)
+/* r->rgb denoised, the raw image kept in r->raw; *est the denoised image's estimated relMSE and
+ * *sd that estimate's standard deviation. */
+static mcrt_status denoise_render(mcrt_render *r, int threads, double *est, double *sd)
 {
     size_t n3 = (size_t)r->film.width * (size_t)r->film.height * 3;
     float *buf = mc_malloc(n3 * DENOISE_IMAGES * sizeof *buf);
@@ -516,7 +517,7 @@ static mcrt_status denoise_render(mcrt_render *r, int threads, double *est)
     memcpy(r->raw, r->rgb, n3 * sizeof *r->raw);
     evar = denoise_inputs(r, buf, halves, layer);
     st = mc_denoise_layers(halves, layer, evar, r->film.width, r->film.height, threads, r->rgb,
-                           est, NULL, &r->err);
+                           est, sd, NULL, &r->err);
     free(buf);
     return st;
 }
@@ -657,9 +658,11 @@ mcrt_status mcrt_render_run(mcrt_render *r)
     r->stats.nan_count = res.nan_count;
     r->stats.est_relmse = r->stats.est_relmse_raw = mc_film_est_relmse(&r->film);
     r->stats.denoise_seconds = 0.0;
+    r->stats.est_relmse_sd = NAN;
     if (r->opt.denoise && res.passes > 0 && st == MCRT_OK) {
         double t0 = mc_seconds();
-        if ((st = denoise_render(r, rs.threads, &r->stats.est_relmse)) != MCRT_OK)
+        if ((st = denoise_render(r, rs.threads, &r->stats.est_relmse, &r->stats.est_relmse_sd))
+            != MCRT_OK)
             return st;
         r->stats.denoise_seconds = mc_seconds() - t0;
         r->stats.seconds += r->stats.denoise_seconds;

@@ -14,14 +14,15 @@ extern const char *const mc_denoise_layer_names[DENOISE_LAYERS];
 
 /* The halves (W·H·3 floats each) and layer[l][h], layer l of half h (W·H·3 floats each, depth in
  * every channel), denoised into rgb (W·H·3 floats) on `threads` threads; *est_relmse gets the
- * denoised image's estimated relative MSE and *est_raw, when est_raw is not NULL, the raw
- * image's as the film estimates it from the halves alone. The emission layer is given to the denoiser as the
+ * denoised image's estimated relative MSE, *est_sd, when not NULL, that estimate's own standard
+ * deviation from one render to the next (denoised_relmse), and *est_raw, when est_raw is not
+ * NULL, the raw image's as the film estimates it from the halves alone. The emission layer is given to the denoiser as the
  * part of the colour that needs no regression (denoise/nfor.h). */
 mcrt_status mc_denoise_layers(const float *const halves[2],
                               const float *layer[DENOISE_LAYERS][2], const float *emission_var,
                               int width, int height,
-                              int threads, float *rgb, double *est_relmse, double *est_raw,
-                              mc_diag *d);
+                              int threads, float *rgb, double *est_relmse, double *est_sd,
+                              double *est_raw, mc_diag *d);
 
 /* Worker threads when the caller asks for 0: the cores online (api.c). */
 int mc_default_threads(void);

@@ -4,6 +4,7 @@
  * disjoint crops assemble the image (a pixel merged into an empty one is copied bit for bit). */
 #include "mcrt.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -149,7 +150,8 @@ static mcrt_status merge(const char *const *paths, int n, const char *output, mc
         stats->spp = (int)((lo + hi) / 2);
         stats->spp_min = (int)lo;
         stats->spp_max = (int)hi;
-        stats->est_relmse = mc_film_est_relmse(&f);
+        stats->est_relmse = stats->est_relmse_raw = mc_film_est_relmse(&f);
+        stats->est_relmse_sd = NAN; /* no denoiser here (mcrt.h) */
     }
     free(rgb);
     free(words.data);

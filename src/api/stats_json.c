@@ -54,6 +54,7 @@ void mc_stats_json(FILE *f, const mcrt_stats *st, uint64_t seed, const char *sce
     json_number(f, "est_relmse", st->est_relmse, ",\n");
     /* The raw image's, beside a denoised one's (the same without denoising). */
     json_number(f, "est_relmse_raw", st->est_relmse_raw, ",\n");
+    json_number(f, "est_relmse_sd", st->est_relmse_sd, ",\n");
     json_number(f, "denoise_seconds", st->denoise_seconds, ",\n");
     json_number(f, "efficiency", st->efficiency, ",\n");
     /* A biased integrator's est_relmse in its parts; null for the others. */

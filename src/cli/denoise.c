@@ -33,7 +33,7 @@ int mc_cli_denoise(int argc, char **argv)
     struct arg_parser p;
     const char *v, *in = NULL, *out = NULL;
     int opt, threads = 0, quiet = 0;
-    double est_raw, est;
+    double est_raw, est, sd;
     char error[512];
     mcrt_status st;
     mc_args_init(&p, argc, argv);
@@ -63,13 +63,13 @@ int mc_cli_denoise(int argc, char **argv)
                         "--help)\n");
         return STATUS_USAGE;
     }
-    st = mcrt_denoise_file(in, out, threads, &est_raw, &est, error, sizeof error);
+    st = mcrt_denoise_file(in, out, threads, &est_raw, &est, &sd, error, sizeof error);
     if (st != MCRT_OK) {
         fprintf(stderr, "mcrt: %s\n", error);
         /* The input's faults are bad input; writing the output, or memory, a failure. */
         return st == MCRT_ERR_NOMEM || st == MCRT_ERR_IO ? STATUS_FAIL : STATUS_USAGE;
     }
     if (!quiet)
-        fprintf(stderr, "%s: est. relMSE %.3g (raw %.3g)\n", out, est, est_raw);
+        fprintf(stderr, "%s: est. relMSE %.3g +- %.2g (raw %.3g)\n", out, est, sd, est_raw);
     return STATUS_OK;
 }

@@ -465,8 +465,8 @@ static int render(const struct render_args *a, const char *output)
     /* A denoised image's estimated error beside the raw one's; the time to a lower error is
      * predicted for raw renders only (the denoiser's error falls at its own rate). */
     if (o.denoise)
-        snprintf(to_goal, sizeof to_goal, " (raw %.3g, denoised in %.2f s)", st.est_relmse_raw,
-                 st.denoise_seconds);
+        snprintf(to_goal, sizeof to_goal, " +- %.2g (raw %.3g, denoised in %.2f s)",
+                 st.est_relmse_sd, st.est_relmse_raw, st.denoise_seconds);
     else if (st.est_relmse > 0.0) { /* the time to the next power of ten below the error */
         double goal = pow(10.0, floor(log10(st.est_relmse)));
         char took[32];

@@ -997,7 +997,7 @@ static void mse_estimate(const float *A, const float *B, const float *fa, const 
 }
 
 mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb, float *mse,
-                            mc_diag *d)
+                            float *mse_var, mc_diag *d)
 {
     int w = in->width, h = in->height, nf = in->nfeatures, f, half;
     size_t n = (size_t)w * (size_t)h, n3 = n * 3, i;
@@ -1203,6 +1203,8 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
         /* 4. */
         if (mse)
             mse_estimate(A, B, fa, fb, la, lb, img[VAR], n3, mse);
+        for (i = 0; mse && mse_var && i < n3; i++)
+            mse_var[i] = sq(img[VAR][i]) / 3.0f;
         /* The fireflies' excesses back (firefly.h), by the standard error of the mean, from a
          * half's variance over the REG_VAR_R box. */
         for (i = 0; nff > 0 && i < n3; i++)

@@ -62,9 +62,13 @@ struct nfor_input {
 
 /* Denoise in on `threads` threads: rgb receives the denoised mean image (W·H·3 floats) and mse,
  * when not NULL, the per-pixel estimate of its squared error (step 4 above; unbiased terms, so
- * a single pixel's may be negative: only sums over many pixels mean much). Returns MCRT_OK, or
- * MCRT_ERR_NOMEM. */
+ * a single pixel's may be negative: only sums over many pixels mean much). mse_var, when not
+ * NULL (with mse), receives each term's own variance from one render to the next: with the
+ * filtered halves near the truth μ, a term is the product (A − μ)(B − μ) of the halves'
+ * independent errors, of variance σ⁴ for a half's variance σ², estimated from the pixel's
+ * v = (A − B)²/2 as v²/3 (E[v²] = 3σ⁴ for Gaussian noise and more for heavier tails, so that it
+ * errs high there). Returns MCRT_OK, or MCRT_ERR_NOMEM. */
 mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb, float *mse,
-                            mc_diag *d);
+                            float *mse_var, mc_diag *d);
 
 #endif

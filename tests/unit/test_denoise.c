@@ -66,7 +66,7 @@ static mcrt_status run(struct bufs *b, int threads)
         in.feature[h][0] = b->feat[h][0];
         in.feature[h][1] = b->feat[h][1];
     }
-    return mc_nfor_denoise(&in, threads, b->rgb, b->mse, &d);
+    return mc_nfor_denoise(&in, threads, b->rgb, b->mse, NULL, &d);
 }
 
 static double mean(const float *v, size_t n)
@@ -201,13 +201,13 @@ static void not_finite_input(void)
         layers[l].rgb = planes[l];
     }
     T_CHECK(mc_image_write_layers(in, layers, NL, LW, LH, &d) == MCRT_OK, "write: %s", d.msg);
-    st = mcrt_denoise_file(in, out, 1, NULL, NULL, err, sizeof err);
+    st = mcrt_denoise_file(in, out, 1, NULL, NULL, NULL, err, sizeof err);
     T_CHECK(st == MCRT_OK, "a finite input denoises: %s", err);
     planes[5][3 * (2 * LW + 3) + 1] = NAN; /* normal.B, pixel (3, 2), green */
     T_CHECK(mc_image_write_layers(in, layers, NL, LW, LH, &d) == MCRT_OK, "write: %s", d.msg);
     f = fopen(out, "w");
     T_CHECK(f && fputs("keep", f) >= 0 && fclose(f) == 0, "writing %s", out);
-    st = mcrt_denoise_file(in, out, 1, NULL, NULL, err, sizeof err);
+    st = mcrt_denoise_file(in, out, 1, NULL, NULL, NULL, err, sizeof err);
     f = fopen(out, "r");
     T_CHECK(f && fgets(kept, sizeof kept, f), "reading %s", out);
     if (f)
