@@ -8,7 +8,9 @@
 # about the mean, and the first run renders the 40 inputs in about a minute): the
 # true relMSE of the raw and of the denoised image, the reduction, the denoised image's estimated
 # relMSE over its true one (the means', the range of the seeds' own, and how many seeds' own are
-# not within the issue's factor 2) and the shift of the mean (denoised minus raw); then the
+# not within the issue's factor 2), the shift of the mean (denoised minus raw) and the mean and
+# spread of (estimate - truth)/est_relmse_sd over the seeds (0 and 1 when the estimate is unbiased
+# and its sd right); then the
 # equal-samples
 # ratio (raw 64 spp over denoised 16 spp, true relMSE) and the seconds the denoiser takes for a
 # 512² image on $THREADS threads (default 2; the median of 3 runs). $MCRT is the binary (default
@@ -55,8 +57,8 @@ render() {
         mv "$out.part.${out##*.}" "$out"
 }
 
-printf '%-16s %4s %10s %10s %7s %15s %8s %13s %8s %9s\n' scene spp raw denoised gain "gain per seed" \
-    est/true "per seed" "not in 2x" d_mean
+printf '%-16s %4s %10s %10s %7s %15s %8s %13s %8s %9s %11s\n' scene spp raw denoised gain \
+    "gain per seed" est/true "per seed" "not in 2x" d_mean "z mean/sd"
 for name in cornell cornell-spheres; do
     scene=$CACHE/$name-$SIZE.mcrt
     film "scenes/$name.mcrt" "$SIZE" >"$tmp/s.mcrt"
@@ -78,20 +80,23 @@ for name in cornell cornell-spheres; do
             render "$in.exr" --spp "$spp" --seed "$seed" --denoise "$scene" &&
                 render "$in.raw.pfm" --spp "$spp" --seed "$seed" "$scene" || exit 1
             est=$("$MCRT" denoise --threads "$THREADS" "$in.exr" -o "$tmp/d.exr" 2>&1 |
-                sed -n 's/.*est\. relMSE \([^ ]*\) .*/\1/p')
+                sed -n 's/.*est\. relMSE \([^ ]*\) +- \([^ ]*\) .*/\1 \2/p')
             rows="$rows$(diffstat "$in.raw.pfm" "$ref") $(diffstat "$tmp/d.exr" "$ref") $est
 "
         done
-        # Per seed: raw relMSE, raw bias, denoised relMSE, denoised bias, denoised estimate.
+        # Per seed: raw relMSE, raw bias, denoised relMSE, denoised bias, denoised estimate and
+        # its standard deviation; z = (estimate - truth)/sd, whose mean and spread (the sample
+        # standard deviation) say how well the sd describes the estimate's scatter.
         printf '%s' "$rows" | awk -v name="$name" -v spp="$spp" -v e="$ref_err" '{
             raw = $1 - e; den = $3 - e; n++
             sraw += raw; sden += den; sest += $5; sd += $4 - $2
             g = raw / den; gmin = n == 1 || g < gmin ? g : gmin; gmax = n == 1 || g > gmax ? g : gmax
             r = $5 / den; rmin = n == 1 || r < rmin ? r : rmin; rmax = n == 1 || r > rmax ? r : rmax
-            out += r < 0.5 || r > 2 }
-            END { printf "%-16s %4d %10.3e %10.3e %6.1fx %6.1f-%5.1fx %8.2f %6.2f-%5.2f %4d/%-3d %+9.2e\n",
+            out += r < 0.5 || r > 2; z = ($5 - den) / $6; sz += z; szz += z * z }
+            END { zm = sz / n; zs = n > 1 ? sqrt((szz - n * zm * zm) / (n - 1)) : 0
+                printf "%-16s %4d %10.3e %10.3e %6.1fx %6.1f-%5.1fx %8.2f %6.2f-%5.2f %4d/%-3d %+9.2e %+5.2f/%4.2f\n",
                 name, spp, sraw / n, sden / n, sraw / sden, gmin, gmax, sest / sden, rmin, rmax, out, n,
-                sd / n
+                sd / n, zm, zs
                 print sraw / n, sden / n > "'"$tmp/mean-$spp"'" }'
     done
     read -r raw64 den64 <"$tmp/mean-64"
