@@ -34,24 +34,25 @@ static int halves_film(struct film *f, const float *a, const float *b, int w, in
     return 0;
 }
 
-/* The relative MSE of the denoised image rgb from its per-pixel error estimate mse: the mean of
- * mse/(rgb² + ε) (film.h's ε), the sum floored at 0. The denominator is the denoised value's
- * square, close to μ² where the denoiser worked; the film's A·B (mc_film_mean_squared), unbiased
- * for μ² but of one degree of freedom, made the estimate 20 times the truth on the Cornell box at
- * 16 spp, its small values in dark noisy pixels dividing the small errors left there.
+/* The relative MSE of the denoised image from its per-pixel error estimate mse: the mean of
+ * mse/(μ² + ε) (film.h's ε), the sum floored at 0, μ² the denoiser's mean_sq: the denoised
+ * value's square, with the noise of the light it adds back unfiltered allowed for (nfor.h), close
+ * to μ² where the denoiser worked; the film's A·B (mc_film_mean_squared), unbiased for μ² but of one
+ * degree of freedom, made the estimate 20 times the truth on the Cornell box at 16 spp, its small
+ * values in dark noisy pixels dividing the small errors left there.
  *
  * Its standard deviation into *sd: the terms' own variances mse_var (nfor.h), independent from
  * pixel to pixel as the halves' noise is, summed over the same denominators squared. This is what
  * makes one render's estimate stray (the README's denoiser section: on the Cornell box at 160²
  * and 16 spp, 1.22e-4 to 1.31e-4 predicted on ten seeds, 1.3e-4 seen, against errors of 4e-4 to
  * 7e-4); it does not see what neither half sampled (a caustic's missed paths). */
-static double denoised_relmse(const float *rgb, const float *mse, const float *mse_var, size_t n3,
-                              double *sd)
+static double denoised_relmse(const float *mean_sq, const float *mse, const float *mse_var,
+                              size_t n3, double *sd)
 {
     double s = 0.0, v = 0.0;
     size_t i;
     for (i = 0; i < n3; i++) {
-        double q = (double)rgb[i] * rgb[i] + MC_RELMSE_EPS;
+        double q = (double)mean_sq[i] + MC_RELMSE_EPS;
         s += mse[i] / q;
         v += mse_var[i] / (q * q);
     }
@@ -70,8 +71,8 @@ mcrt_status mc_denoise_layers(const float *const halves[2],
                               double *est_raw, mc_diag *d)
 {
     size_t n = (size_t)width * (size_t)height, n3 = n * 3, i;
-    float *buf = mc_malloc((2 * n3 + n * NPLANES * 2) * sizeof *buf);
-    float *mse = buf, *mse_var = buf + n3;
+    float *buf = mc_malloc((3 * n3 + n * NPLANES * 2) * sizeof *buf);
+    float *mse = buf, *mse_var = buf + n3, *mean_sq = buf + 2 * n3;
     double sd;
     struct nfor_input in;
     mcrt_status st;
@@ -83,7 +84,7 @@ mcrt_status mc_denoise_layers(const float *const halves[2],
     in.height = height;
     in.nfeatures = NPLANES;
     for (h = 0; h < 2; h++) {
-        float *planes = buf + 2 * n3 + (size_t)h * NPLANES * n;
+        float *planes = buf + 3 * n3 + (size_t)h * NPLANES * n;
         in.color[h] = halves[h];
         in.emission[h] = layer[DENOISE_EMISSION][h];
         in.emission_var = emission_var;
@@ -94,9 +95,9 @@ mcrt_status mc_denoise_layers(const float *const halves[2],
                 planes[(size_t)p * n + i] = src[3 * i + (p < 6 ? p % 3 : 0)];
         }
     }
-    st = mc_nfor_denoise(&in, threads, rgb, mse, mse_var, d);
+    st = mc_nfor_denoise(&in, threads, rgb, mse, mse_var, mean_sq, d);
     if (st == MCRT_OK)
-        *est_relmse = denoised_relmse(rgb, mse, mse_var, n3, &sd);
+        *est_relmse = denoised_relmse(mean_sq, mse, mse_var, n3, &sd);
     if (st == MCRT_OK && est_sd)
         *est_sd = sd;
     if (st == MCRT_OK && est_raw) {

@@ -67,8 +67,16 @@ struct nfor_input {
  * filtered halves near the truth μ, a term is the product (A − μ)(B − μ) of the halves'
  * independent errors, of variance σ⁴ for a half's variance σ², estimated from the pixel's
  * v = (A − B)²/2 as v²/3 (E[v²] = 3σ⁴ for Gaussian noise and more for heavier tails, so that it
- * errs high there). Returns MCRT_OK, or MCRT_ERR_NOMEM. */
+ * errs high there); the emission added back adds its variance V to the term and 2V² to the
+ * term's variance, a Gaussian error's (which errs low for a light that few samples hit: on
+ * scenes/dof.mcrt's lamps out of focus the estimates scatter 2 to 5 times as widely as it
+ * says; README). mean_sq, when not NULL (with mse), receives each pixel's squared true value
+ * μ², which a relative error divides by: rgb² less the variance of the emission added back
+ * unfiltered, or, where that emission is mostly noise, rgb² with the emission's 3×3 mean in
+ * place of its own (where a small lamp out of focus is seen by one sample of 16, rgb² is
+ * hundreds of times μ² and hides the pixel's error; nfor.c). Returns MCRT_OK, or
+ * MCRT_ERR_NOMEM. */
 mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb, float *mse,
-                            float *mse_var, mc_diag *d);
+                            float *mse_var, float *mean_sq, mc_diag *d);
 
 #endif

@@ -1,7 +1,8 @@
 #!/bin/sh
 # denoise_bench.sh: what `mcrt render --denoise` gains (issue 16), a benchmark for the README and
-# the notes (make bench-denoise), not a test. For scenes/cornell.mcrt and scenes/cornell-spheres
-# .mcrt with their films set to $SIZE² (default 160, the size of the OIDN figures in
+# the notes (make bench-denoise), not a test. For the scenes of $SCENES (default
+# scenes/cornell.mcrt, scenes/cornell-spheres.mcrt and scenes/dof.mcrt, whose small lamps far out
+# of focus are seen by few samples) with their films set to $SIZE² (default 160, the size of the OIDN figures in
 # estimators-anchor.md §2), at 16 and 64 spp and for each seed of $SEEDS (default 1 to 10: one
 # render's figures spread, the Cornell box's gain at 16 spp from 12.7 to 21.9 times over those
 # ten, cornell-spheres' estimate from 0 to 2.7 times its truth, so that two seeds said little
@@ -35,6 +36,7 @@ SIZE=${SIZE:-160}
 REF_SPP=${REF_SPP:-4096}
 CAUSTIC_REF_SPP=${CAUSTIC_REF_SPP:-8192}
 SEEDS=${SEEDS:-1 2 3 4 5 6 7 8 9 10}
+SCENES=${SCENES:-cornell cornell-spheres dof}
 THREADS=${THREADS:-2}
 CACHE=${CACHE:-/tmp/mcrt-denoise-bench}
 mkdir -p "$CACHE" || exit 2
@@ -59,7 +61,7 @@ render() {
 
 printf '%-16s %4s %10s %10s %7s %15s %8s %13s %8s %9s %11s\n' scene spp raw denoised gain \
     "gain per seed" est/true "per seed" "not in 2x" d_mean "z mean/sd"
-for name in cornell cornell-spheres; do
+for name in $SCENES; do
     scene=$CACHE/$name-$SIZE.mcrt
     film "scenes/$name.mcrt" "$SIZE" >"$tmp/s.mcrt"
     cmp -s "$tmp/s.mcrt" "$scene" || cp "$tmp/s.mcrt" "$scene"

@@ -66,7 +66,7 @@ static mcrt_status run(struct bufs *b, int threads)
         in.feature[h][0] = b->feat[h][0];
         in.feature[h][1] = b->feat[h][1];
     }
-    return mc_nfor_denoise(&in, threads, b->rgb, b->mse, NULL, &d);
+    return mc_nfor_denoise(&in, threads, b->rgb, b->mse, NULL, NULL, &d);
 }
 
 static double mean(const float *v, size_t n)
