@@ -1238,25 +1238,25 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
         for (i = 0; i < n3; i++)
             rgb[i] = rgb[i] < 0.0f ? 0.0f : rgb[i];
         /* μ² for the relative errors (nfor.h). The emission added back is the halves' mean (or its
-         * fit), unbiased and as noisy as the samples left it, so that E[v²] = μ² + V for its
-         * variance V: v² − V is unbiased for μ², and on the Cornell box's light edges, hit by
-         * many of their pixels' samples, it is what is used (the estimate's mean over ten seeds
-         * at 160² and 16 spp 0.79 -> 0.84 of the truth). Where a light is seen by few of a
-         * pixel's samples it is not: the lamps of scenes/dof.mcrt, points out of focus, are hit
-         * by one sample of 16 in pixels whose μ is 0.1 to 0.5 (value 2.6), and with one hit
-         * s²/n = m², so that v² − V is exactly 0 and the relative term mse/ε (a 48² Cornell box at
-         * 16 spp read 4 times its truth); divided by v² instead, those pixels' error (82% of the
-         * denoised image's, in 0.1% of its pixels) counted for 1/300 of itself, and the image's
-         * estimate read 0.20 of the truth (make bench-denoise). So where v² − V < V (the noise's
-         * standard deviation over 1/√2 of the value) the pixel's emission is taken as its 3×3
-         * mean, a ninth as noisy: dof 0.70 of the truth, 0.20 before. */
+         * fit), unbiased and as noisy as the samples left it, so that E[f²] = μ² + V for the
+         * pixel's value f and that light's variance V: f² − V is unbiased for μ², and on the
+         * Cornell box's light edges, hit by many of their pixels' samples, it is what is used (the
+         * estimate's mean over ten seeds at 160² and 16 spp 0.79 -> 0.84 of the truth). Where a
+         * light is seen by few of a pixel's samples it is not: the lamps of scenes/dof.mcrt,
+         * points out of focus, are hit by one sample of 16 in pixels whose μ is 0.1 to 0.5 (value
+         * 2.6), and with one hit s²/n = m², so that f² − V is exactly 0 and the relative term
+         * mse/ε (a 48² Cornell box at 16 spp read 4 times its truth); divided by f² instead, those
+         * pixels' error (82% of the denoised image's, in 0.1% of its pixels) counted for 1/300 of
+         * itself, and the image's estimate read 0.20 of the truth (make bench-denoise). So where
+         * f² − V < V (the noise's standard deviation over 1/√2 of the value) the pixel's emission
+         * is taken as its 3×3 mean, a ninth as noisy: dof 0.70 of the truth, 0.20 before. */
         if (mse && mean_sq) {
             float *em_box = img[TMP], *tmp = img[ERR];
             if (E[0])
                 box_mean(img[EM], 3, w, h, 1, tmp, em_box);
             for (i = 0; i < n3; i++) {
                 float v = E[0] ? img[EMV][i] : 0.0f, q = rgb[i] * rgb[i] - v;
-                if (q < v) {
+                if (E[0] && q < v) {
                     float m = rgb[i] - img[EM][i] + em_box[i];
                     q = m > 0.0f ? m * m : 0.0f;
                 }
