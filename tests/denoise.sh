@@ -67,36 +67,33 @@ energy() {
     fi
 }
 
+# factor2 NAME SIZE: error() of NAME on a SIZE² film for seeds 1-3; the mean estimate within a
+# factor 2 of the mean truth, and the energy kept.
+factor2() {
+    if error "$1" "$2" 1 2 3; then
+        if echo "$est $tru" | awk '{ exit !($1 > $2 / 2 && $1 < $2 * 2) }'; then
+            ok "$1: denoised est. relMSE $est vs true $tru (raw $raw_tru) at 16 spp, within a factor 2"
+        else
+            fail "$1" "denoised est. relMSE $est vs true $tru (raw $raw_tru) at 16 spp: not within a factor 2"
+        fi
+        energy "$1"
+    else
+        fail "$1" "a render failed"
+    fi
+}
+
 # The Cornell box: the issue's factor 2, on the 160² film of its measurements (estimators-anchor.md
 # §2), the mean over seeds 1-3: one render's estimate spreads widely (make bench-denoise, ten
 # seeds: 0.77 of the truth in the mean at 16 spp, 0.30 to 1.15 seed by seed; the README's
 # denoiser section says why).
-if error cornell 160 1 2 3; then
-    if echo "$est $tru" | awk '{ exit !($1 > $2 / 2 && $1 < $2 * 2) }'; then
-        ok "cornell: denoised est. relMSE $est vs true $tru (raw $raw_tru) at 16 spp, within a factor 2"
-    else
-        fail "cornell" "denoised est. relMSE $est vs true $tru (raw $raw_tru) at 16 spp: not within a factor 2"
-    fi
-    energy cornell
-else
-    fail cornell "a render failed"
-fi
+factor2 cornell 160
 # Five small lamps far out of focus (scenes/dof.mcrt, 128², 16 spp, seeds 1-3): their blur disks
 # are light seen by one sample of 16 here and there, which the denoiser adds back unfiltered, and
 # most of the denoised image's error. Each pixel's error must be divided by an estimate of its
 # μ², not by its noisy value squared, hundreds of times larger there (nfor.h, mean_sq): that way
 # the estimate read 0.18 of the truth (0.14 to 0.27 seed by seed); now 0.78 (0.56 to 1.26). The
 # issue's factor 2, on the mean of the three seeds.
-if error dof 128 1 2 3; then
-    if echo "$est $tru" | awk '{ exit !($1 > $2 / 2 && $1 < $2 * 2) }'; then
-        ok "dof: denoised est. relMSE $est vs true $tru (raw $raw_tru) at 16 spp, within a factor 2"
-    else
-        fail "dof" "denoised est. relMSE $est vs true $tru (raw $raw_tru) at 16 spp: not within a factor 2"
-    fi
-    energy dof
-else
-    fail dof "a render failed"
-fi
+factor2 dof 128
 # The estimate's own standard deviation (est_relmse_sd, the terms' variances summed): over ten
 # seeds of the Cornell box at 128² and 16 spp, z = (est − true)/sd has a spread (the sample
 # standard deviation of the ten) that ten draws of a unit normal exceed or fall short of with

@@ -6,7 +6,8 @@
 # estimators-anchor.md §2), at 16 and 64 spp and for each seed of $SEEDS (default 1 to 10: one
 # render's figures spread, the Cornell box's gain at 16 spp from 12.7 to 21.9 times over those
 # ten, cornell-spheres' estimate from 0 to 2.7 times its truth, so that two seeds said little
-# about the mean, and the first run renders the 40 inputs in about a minute): the
+# about the mean, and the first run renders the 60 inputs and the references in a few
+# minutes): the
 # true relMSE of the raw and of the denoised image, the reduction, the denoised image's estimated
 # relMSE over its true one (the means', the range of the seeds' own, and how many seeds' own are
 # not within the issue's factor 2), the shift of the mean (denoised minus raw) and the mean and
