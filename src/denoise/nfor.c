@@ -1219,7 +1219,8 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
         mc_firefly_spread(ff, nff, img[TMP], w, h, rgb, mse);
         /* The emission back, fitted along the lights' edges (light_edge.h), and its variance:
          * its error and the rest's add, as the rest's filter never sees it. */
-        if (E[0] && mc_light_edge_fit(E, in->emission_var, w, h, img[EM], img[EMV]) != 0)
+        if (E[0]
+            && mc_light_edge_fit(E, in->emission_var, in->depth, w, h, img[EM], img[EMV]) != 0)
             st = mc_fail(d, MCRT_ERR_NOMEM, "out of memory for the denoiser (%dx%d)", w, h);
         for (i = 0; E[0] && st == MCRT_OK && i < n3; i++) {
             rgb[i] += img[EM][i];

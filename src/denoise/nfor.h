@@ -58,6 +58,8 @@ struct nfor_input {
     const float *feature[2][MC_NFOR_MAX_FEATURES]; /* per half, planes of W·H floats */
     const float *emission[2]; /* per half, W·H·3 floats, part of color; NULL: none */
     const float *emission_var; /* W·H·3 floats: the variance of the emission's pixel mean */
+    const float *depth[2];   /* per half, W·H floats: the depth feature (one of feature[][] too),
+                                for the lights' edges (light_edge.h); NULL: not given */
 };
 
 /* Denoise in on `threads` threads: rgb receives the denoised mean image (W·H·3 floats) and mse,

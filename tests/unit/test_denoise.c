@@ -61,6 +61,7 @@ static mcrt_status run(struct bufs *b, int threads)
     in.height = H;
     in.nfeatures = 2;
     in.emission[0] = in.emission[1] = NULL;
+    in.depth[0] = in.depth[1] = NULL;
     for (h = 0; h < 2; h++) {
         in.color[h] = b->half[h];
         in.feature[h][0] = b->feat[h][0];
