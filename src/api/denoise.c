@@ -88,7 +88,7 @@ mcrt_status mc_denoise_layers(const float *const halves[2],
         in.color[h] = halves[h];
         in.emission[h] = layer[DENOISE_EMISSION][h];
         in.emission_var = emission_var;
-        in.depth[h] = planes + (size_t)(NPLANES - 1) * n;
+        in.depth[h] = planes + (size_t)(NPLANES - 1) * n; /* the last plane (below) */
         for (p = 0; p < NPLANES; p++) {
             const float *src = layer[p < 3 ? DENOISE_ALBEDO : p < 6 ? DENOISE_NORMAL : DENOISE_DEPTH][h];
             in.feature[h][p] = planes + (size_t)p * n;

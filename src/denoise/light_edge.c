@@ -15,8 +15,8 @@
  * turn, the first accepted kept. Measured by the denoised error of the Cornell box (160², 10
  * seeds, 16 / 64 spp, relMSE 6.89e-4 / 1.68e-4 without the fit): 5.35e-4 / 1.40e-4 with it; the
  * threshold 1.5: 5.82e-4 / 1.55e-4, 3: 5.47e-4 / 1.36e-4; the radii {4, 2}: 5.91e-4 / 1.50e-4,
- * {6, 4}: 5.39e-4 / 1.43e-4, {8, 6, 4, 3, 2}: 5.32e-4 / 1.39e-4 (with the weights below, before
- * they were equal). cornell-spheres, whose light's edges its Sobol samples measure closely, moved
+ * {6, 4}: 5.39e-4 / 1.43e-4, {8, 6, 4, 3, 2}: 5.32e-4 / 1.39e-4 (all with the inverse-variance
+ * weights of before, below). cornell-spheres, whose light's edges its Sobol samples measure closely, moved
  * by under 0.1%.
  *
  * The pixels of a window weigh the same. Weighted by the inverse of their own variances s²/n,
