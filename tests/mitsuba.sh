@@ -131,7 +131,7 @@ if grep -Eq "matrix value=\"$z $z -1 0 $z $one $z 0 1 $z $z 0 0 0 0 1\"" "$tmp/e
 else fail "envmap-rotated" "matrix: $(grep -o 'matrix value="[^"]*"' "$tmp/envmap-rotated.xml")"; fi
 
 # ---- camera, film, integrator ----
-expect camera "camera { eye 1 2 3 look 0 1 0 up 0 1 0 fov 30 } film { width 64 height 32 spp 9 } $lit sphere { }" \
+expect camera "camera { eye 1 2 3 look 0 1 0 up 0 1 0 fov 30 } film { width 64 height 32 spp 9 sampler stratified } $lit sphere { }" \
     "pinhole, film and a square stratified count" \
     '<sensor type="perspective">' '<float name="fov" value="30"/>' \
     '<lookat origin="1, 2, 3" target="0, 1, 0" up="0, 1, 0"/>' \
@@ -146,7 +146,8 @@ expect lens "camera { lens_radius 0.1 } film { spp 8 sampler random filter tent 
 expect sobol "film { spp 16 sampler sobol filter gaussian } sphere { } $lit" "ldsampler, gaussian" \
     '<sampler type="ldsampler">' '<rfilter type="gaussian"><float name="stddev" value="0.5"/></rfilter>'
 expect sobol-8 "film { spp 8 sampler sobol } sphere { } $lit" "sobol, 8 not a power of 4" '<sampler type="multijitter">'
-expect multijitter "film { spp 8 } sphere { } $lit" "stratified, 8 not a square" '<sampler type="multijitter">'
+expect default-sampler "film { spp 64 } sphere { } $lit" "the default sampler is sobol" '<sampler type="ldsampler">'
+expect multijitter "film { spp 8 sampler stratified } sphere { } $lit" "stratified, 8 not a square" '<sampler type="multijitter">'
 expect depth "integrator { max_depth 3 rr_depth 2 } sphere { } $lit" "max_depth counts the camera ray" \
     '<integrator type="path"><integer name="max_depth" value="4"/><integer name="rr_depth" value="2"/></integrator>'
 expect direct "integrator { method direct } sphere { } $lit" "direct is two rays" \

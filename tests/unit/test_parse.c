@@ -72,7 +72,7 @@ static void test_minimal(void)
         T_CHECK(near3(p->p[0], 0, 0, 0) && p->p[1].x == 1.0f && v3_is_zero(p->emit), "defaults");
     }
     T_CHECK(s.film.width == 512 && s.film.height == 512 && s.film.spp == 16
-                && s.film.sampler == SAMPLER_STRATIFIED,
+                && s.film.sampler == SAMPLER_SOBOL,
             "film defaults kept");
     T_CHECK(s.integrator.max_depth == -1 && s.integrator.rr_depth == 5, "integrator defaults");
     T_CHECK(s.light_count == 0, "no lights");
