@@ -12,7 +12,10 @@
  * same (light_edge.c says why), and the fit's a replaces the pixel's value when it agrees with
  * every pixel of the window within their noise: a reduced chi-square below EDGE_CHI2. Windows
  * of radius 6, 4 and 2 are tried in turn, the first accepted kept: a long edge averages many
- * pixels, and a corner, where no plane fits, keeps its own value.
+ * pixels. A corner, where no plane fits, and the dark pixels beside an edge, are given the share
+ * of the pixel inside the light's edges taken as straight lines through the edge pixels' shares
+ * (light_edge.c), weighed against the pixel's own emission, where the pixel and its neighbours
+ * agree with those lines.
  *
  * The variances are the samples' s²/n (render/aov.h), which stratified and Sobol samples make an
  * overestimate: a light's edge crosses a pixel's strata, whose hits vary less than independent
@@ -37,7 +40,8 @@
  * Writes the emission to add back, (em[0] + em[1])/2 or its fit, into out and that value's
  * variance into out_var (W·H·3 floats each): var, scaled on the edge pixels (an unseen pixel's
  * taken from its neighbours), or where it is fitted the fit's variance, [(XᵀX)⁻¹]₀₀ times the
- * window's mean variance, scaled.
+ * window's mean variance, scaled, or at a corner the variance of the blend of the lines' share
+ * and the pixel's own.
  * Returns 0, or -1 when out of memory. */
 int mc_light_edge_fit(const float *const em[2], const float *var, const float *const depth[2],
                       int width, int height, float *out, float *out_var);
