@@ -58,6 +58,8 @@ vec3 mc_bsdf_eval(const struct bsdf *b, vec3 wo, vec3 wi, enum mc_transport mode
     return b->delta ? v3s(0.0f) : b->ops->eval(b, wo, wi, mode);
 }
 
+int mc_bsdf_chooses(const struct bsdf *b) { return b->ops->chooses; }
+
 int mc_bsdf_transmits(const struct bsdf *b) { return b->ops == &mc_material_ops_glass; }
 
 float mc_bsdf_pdf(const struct bsdf *b, vec3 wo, vec3 wi)

@@ -95,6 +95,8 @@ void mc_bsdf_init_at(struct bsdf *b, const struct material *m, vec3 color, float
 /* Whether every lobe is a delta lobe (no light sampling is useful then): mirror, smooth glass
  * (or glass of ior 1, which is no interface at all), smooth metal. */
 static inline int mc_bsdf_is_delta(const struct bsdf *b) { return b->delta; }
+/* Whether mc_bsdf_sample reads uc (material.h, chooses); where it does not, pass any value. */
+int mc_bsdf_chooses(const struct bsdf *b);
 /* Whether light can cross the surface (glass); every other kind only reflects. */
 int mc_bsdf_transmits(const struct bsdf *b);
 vec3 mc_bsdf_eval(const struct bsdf *b, vec3 wo, vec3 wi, enum mc_transport mode);

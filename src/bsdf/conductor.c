@@ -98,5 +98,5 @@ static const struct mc_material_example examples[] = {
 #undef GOLD_ETA_K
 
 const struct mc_material_ops mc_material_ops_metal = {
-    "glossy metal", MC_DELTA_WHEN_SMOOTH, conductor_complete, NULL, NULL, conductor_eval, conductor_pdf,
+    "glossy metal", MC_DELTA_WHEN_SMOOTH, 0, conductor_complete, NULL, NULL, conductor_eval, conductor_pdf,
     conductor_sample, examples, (int)(sizeof examples / sizeof examples[0])};

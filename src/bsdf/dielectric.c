@@ -203,5 +203,5 @@ static const struct mc_material_example examples[] = {
 };
 
 const struct mc_material_ops mc_material_ops_glass = {
-    "glass", MC_DELTA_WHEN_SMOOTH, NULL, glass_prepare, glass_init, dielectric_eval, dielectric_pdf, glass_sample,
+    "glass", MC_DELTA_WHEN_SMOOTH, 1, NULL, glass_prepare, glass_init, dielectric_eval, dielectric_pdf, glass_sample,
     examples, (int)(sizeof examples / sizeof examples[0])};

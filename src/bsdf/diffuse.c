@@ -50,5 +50,5 @@ static const struct mc_material_example examples[] = {
 };
 
 const struct mc_material_ops mc_material_ops_diffuse = {
-    "diffuse reflector", MC_DELTA_NEVER, NULL, NULL, NULL, diffuse_eval, diffuse_pdf, diffuse_sample,
+    "diffuse reflector", MC_DELTA_NEVER, 0, NULL, NULL, NULL, diffuse_eval, diffuse_pdf, diffuse_sample,
     examples, (int)(sizeof examples / sizeof examples[0])};

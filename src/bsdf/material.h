@@ -83,6 +83,11 @@ struct mc_material_example {
 struct mc_material_ops {
     const char *what;                /* what it is in a few words, for messages ("glossy metal") */
     enum mc_delta delta;
+    /* Whether sample reads its 1D number uc: a choice between reflection and transmission (glass)
+     * or between the coat and the base (plastic). The others ignore it, and the integrators then
+     * draw none (mc_bsdf_chooses): a sampler dimension spent on nothing costs a draw (130
+     * instructions of a Sobol sample) and nothing else. */
+    int chooses;
     /* After the parser has set the fields the given keys name (`given`: MC_KEY_BITs and
      * MC_GIVEN_VALUE), derive the rest (metal: η and k from a reflectance) and check them.
      * Returns 0 with *p filled when they are wrong. NULL: nothing to derive or check. */

@@ -147,5 +147,5 @@ static const struct mc_material_example examples[] = {
 };
 
 const struct mc_material_ops mc_material_ops_plastic = {
-    "glossy plastic", MC_DELTA_NEVER, plastic_complete, NULL, plastic_init, plastic_eval, plastic_pdf,
+    "glossy plastic", MC_DELTA_NEVER, 1, plastic_complete, NULL, plastic_init, plastic_eval, plastic_pdf,
     plastic_sample, examples, (int)(sizeof examples / sizeof examples[0])};

@@ -57,5 +57,5 @@ static const struct mc_material_example mirror_examples[] = {
 };
 
 const struct mc_material_ops mc_material_ops_mirror = {
-    "mirror", MC_DELTA_ALWAYS, NULL, NULL, NULL, NULL, NULL, mirror_sample,
+    "mirror", MC_DELTA_ALWAYS, 0, NULL, NULL, NULL, NULL, NULL, mirror_sample,
     mirror_examples, (int)(sizeof mirror_examples / sizeof mirror_examples[0])};

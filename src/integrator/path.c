@@ -81,7 +81,7 @@ static inline vec3 radiance(const struct scene *s, const struct integrator_desc 
             L = v3_add(L, v3_mul(beta, sample_direct(s, cfg, &sf, r.time, &fr, &b, wo, smp, rays, F)));
 
         {
-            float uc = mc_sampler_1d(smp);
+            float uc = mc_bsdf_chooses(&b) ? mc_sampler_1d(smp) : 0.5f;
             vec2 u = mc_sampler_2d(smp);
             if (!mc_bsdf_sample(&b, wo, uc, u, MC_RADIANCE, &bs))
                 break;

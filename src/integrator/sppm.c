@@ -161,7 +161,7 @@ static vec3 bsdf_emission(const struct pass_ctx *c, const struct surface *sf, co
     struct bsdf_sample bs;
     struct ray r;
     struct hit h;
-    float uc = mc_sampler_1d(smp);
+    float uc = mc_bsdf_chooses(b) ? mc_sampler_1d(smp) : 0.5f;
     vec2 u = mc_sampler_2d(smp);
     if (!mc_bsdf_sample(b, wo, uc, u, MC_RADIANCE, &bs) || bs.delta)
         return v3s(0.0f); /* a delta lobe's light is the camera path's, followed elsewhere */

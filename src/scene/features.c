@@ -48,11 +48,12 @@ const char *mc_feature_name(unsigned bit)
     }
 }
 
-struct sample_dims mc_feature_dims(unsigned features, const struct integrator_desc *it)
+struct sample_dims mc_feature_dims(unsigned features, const struct integrator_desc *it,
+                                   int choose_light, int choose_lobe)
 {
     struct sample_dims d;
     d.camera = 2 + (features & FEATURE_LENS ? 2 : 0) + (features & FEATURE_MOTION ? 1 : 0);
-    d.per_bounce = 3 * it->light_samples + 3;
+    d.per_bounce = (2 + (choose_light != 0)) * it->light_samples + 2 + (choose_lobe != 0);
     d.roulette = 1;
     return d;
 }

@@ -4,7 +4,8 @@
  * sample, eval and pdf in both transport modes; reciprocity in the form of the adjoint,
  * f_radiance(wo, wi) = f_importance(wi, wo) (Veach 1997 §5.2 and eq. 5.14; pbrt-v4 §9.5.2),
  * and equal modes for reflection; directional albedo at most 1, 1 in a white furnace for the
- * parameter sets that claim it. Kind-specific laws are in test_bsdf.c and test_microfacet.c. */
+ * parameter sets that claim it; a kind that says it reads no choice number (ops->chooses 0,
+ * material.h) samples the same for every uc, and one that says it reads it does not. Kind-specific laws are in test_bsdf.c and test_microfacet.c. */
 #include <string.h>
 
 #include "bsdf/material.h"
@@ -174,6 +175,39 @@ static void test_consistency(void)
     }
 }
 
+/* ---- the choice number ---- */
+
+/* The integrators draw uc only for a kind whose ops say it reads it (mc_bsdf_chooses): one that
+ * says it does not must sample the same for uc 0.05 and 0.95 (else its lobe choice would be
+ * stuck at 0.5), over random wo and u in both modes; one that says it does must differ for some,
+ * or the draw is spent on nothing. */
+static void test_chooses(void)
+{
+    int i, j;
+    for (i = 0; i < example_count; i++) {
+        const struct bsdf *b = &examples[i].b;
+        int differ = 0, m;
+        pcg32 rng;
+        pcg32_seed(&rng, 500 + (uint64_t)i, 0);
+        for (j = 0; j < 2000; j++) {
+            vec3 wo = mc_warp_uniform_sphere(rand2(&rng));
+            vec2 u = rand2(&rng);
+            for (m = 0; m < 2; m++) {
+                enum mc_transport mode = m == 0 ? MC_RADIANCE : MC_IMPORTANCE;
+                struct bsdf_sample s0, s1;
+                int ok0 = mc_bsdf_sample(b, wo, 0.05f, u, mode, &s0);
+                int ok1 = mc_bsdf_sample(b, wo, 0.95f, u, mode, &s1);
+                differ += ok0 != ok1 || (ok0 && (!same_vec(s0.wi, s1.wi) || s0.pdf != s1.pdf));
+            }
+        }
+        if (mc_bsdf_chooses(b))
+            T_CHECK(differ > 0, "%s: says it reads uc, but samples alike for every uc", examples[i].name);
+        else
+            T_CHECK(differ == 0, "%s: says it reads no uc, but %d samples of 4000 change with it",
+                    examples[i].name, differ);
+    }
+}
+
 /* ---- reciprocity ---- */
 
 /* f_radiance(wo, wi) = f_importance(wi, wo), and f_radiance = f_importance for wo, wi on the same
@@ -285,6 +319,7 @@ int main(void)
     make_examples();
     test_chi2();
     test_consistency();
+    test_chooses();
     test_reciprocity();
     test_energy();
     return t_done();
