@@ -285,16 +285,14 @@ const char *mcrt_scene_info(mcrt_scene *s)
     unsigned f, bit;
     struct sample_dims dims;
     size_t n = 0, bvh_bytes, i;
-    int w, chooses = 0;
+    int w;
     if (!s)
         return "";
     if (!s->loaded)
         return "no scene loaded\n";
     sc = &s->s;
     f = mc_scene_features(sc);
-    for (i = 0; i < sc->material_count && !chooses; i++)
-        chooses = sc->materials[i].kind->ops->chooses;
-    dims = mc_feature_dims(f, &sc->integrator, sc->light_count > 1, chooses);
+    dims = mc_scene_dims(sc, f);
     bvh_bytes = mc_bvh_bytes(&sc->bvh) + mc_bvh_bytes(&sc->motion_bvh)
                 + sc->prim_count * sizeof *sc->prims + sc->normal_count * sizeof *sc->normals
                 + (sc->uvs ? sc->normal_count * sizeof *sc->uvs : 0);

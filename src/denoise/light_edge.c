@@ -527,6 +527,7 @@ int mc_light_edge_fit(const float *const em[2], const float *var_in, const float
     /* The halves' mean emission, its variance with the unseen pixels' (below), the mean depth. */
     float *mean = mc_malloc(n * 7 * sizeof *mean), *var = mean + n * 3, *dep = var + n * 3;
     double scale[3];
+    const struct corner_in in = {mean, var, dep, out, out_var, edge, fitted, scale, width, height};
     int x, y, k, c;
     if (!edge || !mean) {
         free(edge);
@@ -602,8 +603,6 @@ int mc_light_edge_fit(const float *const em[2], const float *var_in, const float
      * fitted pixels' results, so the order does not matter. */
     for (y = 0; depth[0] && y < height; y++)
         for (x = 0; x < width; x++) {
-            const struct corner_in in = {mean, var, dep, out, out_var, edge, fitted, scale,
-                                         width, height};
             float fit[3], fit_var[3];
             i = (size_t)y * (size_t)width + (size_t)x;
             if (fitted[i]

@@ -48,12 +48,15 @@ const char *mc_feature_name(unsigned bit)
     }
 }
 
-struct sample_dims mc_feature_dims(unsigned features, const struct integrator_desc *it,
-                                   int choose_light, int choose_lobe)
+struct sample_dims mc_scene_dims(const struct scene *s, unsigned features)
 {
     struct sample_dims d;
+    int choose_lobe = 0;
+    size_t i;
+    for (i = 0; i < s->prim_count && !choose_lobe; i++)
+        choose_lobe = s->materials[s->prims[i].material].kind->ops->chooses;
     d.camera = 2 + (features & FEATURE_LENS ? 2 : 0) + (features & FEATURE_MOTION ? 1 : 0);
-    d.per_bounce = (2 + (choose_light != 0)) * it->light_samples + 2 + (choose_lobe != 0);
+    d.per_bounce = (2 + (s->light_count > 1)) * s->integrator.light_samples + 2 + choose_lobe;
     d.roulette = 1;
     return d;
 }

@@ -35,14 +35,14 @@ static inline int mc_features_need_mis(unsigned f)
 /* Name of one feature bit ("lens", "motion", ...). */
 const char *mc_feature_name(unsigned bit);
 
-/* Sample dimensions one path draws: `camera` per camera ray, `per_bounce` at most at each
- * non-delta hit (light choice, when there are two lights or more, and light point per shadow ray;
- * the BSDF's choice of lobe, when a material chooses one (bsdf.h, mc_bsdf_chooses), and its
- * direction), plus one roulette dimension per bounce from rr_depth on. */
+/* Sample dimensions one path through scene s (rendered with these features) draws: `camera` per
+ * camera ray, `per_bounce` at most at each non-delta hit (light choice, when there are two lights
+ * or more, and light point per shadow ray; the BSDF's choice of lobe, when a material some
+ * primitive uses chooses one (bsdf.h, mc_bsdf_chooses), and its direction), plus one roulette
+ * dimension per bounce from rr_depth on. */
 struct sample_dims {
     int camera, per_bounce, roulette;
 };
-struct sample_dims mc_feature_dims(unsigned features, const struct integrator_desc *it,
-                                   int choose_light, int choose_lobe);
+struct sample_dims mc_scene_dims(const struct scene *s, unsigned features);
 
 #endif
