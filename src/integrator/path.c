@@ -7,38 +7,43 @@
 
 #include "integrator/path_vertex.h"
 
-/* Next-event estimation at a non-delta surface: the mean of `light_samples` shadow rays. */
+/* Next-event estimation at a non-delta surface, the shading point at: the mean of
+ * `light_samples` shadow rays. */
 static inline vec3 sample_direct(const struct scene *s, const struct integrator_desc *cfg,
-                                 const struct surface *sf, float time, const frame *fr,
-                                 const struct bsdf *b, vec3 wo, struct sampler *smp,
-                                 uint64_t *rays, unsigned F)
+                                 const struct surface *sf, struct light_select_at *at, float time,
+                                 const frame *fr, const struct bsdf *b, vec3 wo,
+                                 struct sampler *smp, uint64_t *rays, unsigned F)
 {
     vec3 L = v3s(0.0f);
     int i, n = F & FEATURE_LIGHT_SAMPLES ? cfg->light_samples : 1;
     for (i = 0; i < n; i++)
-        L = v3_add(L, light_sample(s, sf, time, fr, b, wo, smp, rays, n, F,
+        L = v3_add(L, light_sample(s, sf, at, time, fr, b, wo, smp, rays, n, F,
                                    mc_features_need_mis(F) && cfg->strategy != STRATEGY_LIGHT));
     return L;
 }
 
-/* Weight of light found by BSDF sampling (pdf bsdf_pdf at the previous vertex prev_p with shading
- * normal prev_n, a non-delta bounce): with MIS, the power heuristic against the light samples
- * that could also have produced it; with one strategy alone, all or nothing. */
+/* Weight of light found by BSDF sampling (pdf bsdf_pdf at the previous vertex, the shading point
+ * prev, a non-delta bounce): with MIS, the power heuristic against the light samples that could
+ * also have produced it; with one strategy alone, all or nothing. */
 static float emitted_weight(const struct scene *s, const struct integrator_desc *cfg, int light,
-                            vec3 prev_p, vec3 prev_n, float bsdf_pdf, const struct ray *r, float t,
-                            const struct surface *sf)
+                            struct light_select_at *prev, float bsdf_pdf, const struct ray *r,
+                            float t, const struct surface *sf)
 {
     if (cfg->strategy != STRATEGY_MIS)
         return cfg->strategy == STRATEGY_BSDF ? 1.0f : 0.0f;
-    return emitted_mis_weight(s, cfg->light_samples, light, prev_p, prev_n, bsdf_pdf, r, t, sf);
+    return emitted_mis_weight(s, cfg->light_samples, light, prev, bsdf_pdf, r, t, sf);
 }
 
 static inline vec3 radiance(const struct scene *s, const struct integrator_desc *cfg, struct ray r,
                             struct sampler *smp, uint64_t *rays, unsigned F)
 {
-    vec3 L = v3s(0.0f), beta = v3s(1.0f), prev_p = r.o, prev_n = v3s(0.0f);
+    vec3 L = v3s(0.0f), beta = v3s(1.0f);
     float eta_scale = 1.0f, prev_pdf = 0.0f;
     int depth = 0, specular = 1; /* the camera ray counts as specular: its emission is not MIS'd */
+    /* The last non-delta vertex, where the light samples chose and where the MIS weight of the
+     * light that the BSDF sample finds next reads the same choice's pmf. */
+    struct light_select_at prev;
+    mc_light_select_at(&prev, r.o, v3s(0.0f));
     for (;;) {
         struct hit h;
         struct surface sf;
@@ -52,7 +57,7 @@ static inline vec3 radiance(const struct scene *s, const struct integrator_desc 
         if (!trace(s, &r, &h, F)) {
             if (mc_features_need_mis(F) && s->env_light >= 0) {
                 float w = specular ? 1.0f
-                                   : emitted_weight(s, cfg, s->env_light, prev_p, prev_n, prev_pdf, &r,
+                                   : emitted_weight(s, cfg, s->env_light, &prev, prev_pdf, &r,
                                                     INFINITY, NULL);
                 vec3 Le = mc_environment_radiance(&s->lights[s->env_light], r.d);
                 L = v3_add(L, v3_scale(v3_mul(beta, Le), w));
@@ -66,8 +71,7 @@ static inline vec3 radiance(const struct scene *s, const struct integrator_desc 
             vec3 Le = mc_light_emitted(pr, &sf);
             if (!v3_is_zero(Le)) {
                 float w = specular ? 1.0f
-                                   : emitted_weight(s, cfg, pr->light, prev_p, prev_n, prev_pdf, &r, h.t,
-                                                   &sf);
+                                   : emitted_weight(s, cfg, pr->light, &prev, prev_pdf, &r, h.t, &sf);
                 L = v3_add(L, v3_scale(v3_mul(beta, Le), w));
             }
         }
@@ -77,8 +81,12 @@ static inline vec3 radiance(const struct scene *s, const struct integrator_desc 
         bsdf_at(s, &r, &h, pr, &b, F);
         fr = frame_from_normal(sf.ns);
         wo = frame_to_local(&fr, v3_neg(r.d));
-        if (!mc_bsdf_is_delta(&b) && cfg->strategy != STRATEGY_BSDF)
-            L = v3_add(L, v3_mul(beta, sample_direct(s, cfg, &sf, r.time, &fr, &b, wo, smp, rays, F)));
+        if (!mc_bsdf_is_delta(&b)) {
+            mc_light_select_at(&prev, sf.p, sf.ns);
+            if (cfg->strategy != STRATEGY_BSDF)
+                L = v3_add(L, v3_mul(beta, sample_direct(s, cfg, &sf, &prev, r.time, &fr, &b, wo,
+                                                         smp, rays, F)));
+        }
 
         {
             float uc = mc_bsdf_chooses(&b) ? mc_sampler_1d(smp) : 0.5f;
@@ -96,8 +104,6 @@ static inline vec3 radiance(const struct scene *s, const struct integrator_desc 
             break;
         specular = bs.delta;
         prev_pdf = bs.pdf;
-        prev_p = sf.p;
-        prev_n = sf.ns;
         r.o = ray_spawn(sf.p, side_normal(sf.ng, wi), sf.err);
         r.d = wi;
         r.tmax = INFINITY;

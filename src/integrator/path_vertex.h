@@ -63,25 +63,26 @@ static inline int through_surface(const struct bsdf *b, vec3 ng, vec3 wo, vec3 w
     return !(v3_dot(wo, ng) * v3_dot(wi, ng) > 0.0f) && !mc_bsdf_transmits(b);
 }
 
-/* The MIS weight of emission from `light` that a BSDF sample of pdf bsdf_pdf from the point p
- * with shading normal n found along r (at distance t on surface sf; the environment: INFINITY,
- * NULL), against the n_samples light samples there: the light's selection pmf at that same p and
- * n (light/select.h) times its solid-angle pdf. */
-static inline float emitted_mis_weight(const struct scene *s, int n_samples, int light, vec3 p,
-                                       vec3 n, float bsdf_pdf, const struct ray *r, float t,
-                                       const struct surface *sf)
+/* The MIS weight of emission from `light` that a BSDF sample of pdf bsdf_pdf from the shading
+ * point at found along r (at distance t on surface sf; the environment: INFINITY, NULL), against
+ * the n_samples light samples there: the light's selection pmf at that same point (the one its
+ * light samples chose with, light/select.h) times its solid-angle pdf. */
+static inline float emitted_mis_weight(const struct scene *s, int n_samples, int light,
+                                       struct light_select_at *at, float bsdf_pdf,
+                                       const struct ray *r, float t, const struct surface *sf)
 {
-    float light_pdf = (float)mc_light_select_pmf(&s->light_select, p, n, light)
-                      * mc_light_pdf(&s->light_scene, &s->lights[light], p, r->time, r->d, t, sf);
+    float light_pdf = (float)mc_light_select_pmf(&s->light_select, at, light)
+                      * mc_light_pdf(&s->light_scene, &s->lights[light], at->p, r->time, r->d, t, sf);
     return power_heuristic(bsdf_pdf, (float)n_samples * light_pdf);
 }
 
 /* One shadow ray of next-event estimation, one of n: a light chosen for sf's point and shading
- * normal (light/select.h), a point on it, weighted against BSDF sampling when mis is nonzero (and
- * the light is not a delta light). Returns the contribution before the path throughput. */
-static inline vec3 light_sample(const struct scene *s, const struct surface *sf, float time,
-                                const frame *fr, const struct bsdf *b, vec3 wo,
-                                struct sampler *smp, uint64_t *rays, int n, unsigned F, int mis)
+ * normal, at (light/select.h), a point on it, weighted against BSDF sampling when mis is nonzero
+ * (and the light is not a delta light). Returns the contribution before the path throughput. */
+static inline vec3 light_sample(const struct scene *s, const struct surface *sf,
+                                struct light_select_at *at, float time, const frame *fr,
+                                const struct bsdf *b, vec3 wo, struct sampler *smp,
+                                uint64_t *rays, int n, unsigned F, int mis)
 {
     struct light_sample ls;
     struct ray shadow;
@@ -90,7 +91,7 @@ static inline vec3 light_sample(const struct scene *s, const struct surface *sf,
     vec3 wi, f, target;
     /* With one light there is nothing to choose: its draw would be a sampler dimension spent. */
     double u_light = s->light_count > 1 ? mc_sampler_1d_double(smp) : 0.5;
-    int li = mc_light_select_sample(&s->light_select, sf->p, sf->ns, u_light, &pmf);
+    int li = mc_light_select_sample(&s->light_select, at, u_light, &pmf);
     vec2 u = mc_sampler_2d(smp);
     if (li < 0 || !mc_light_sample(&s->light_scene, &s->lights[li], sf->p, time, u, &ls)
         || v3_is_zero(ls.L) || through_surface(b, sf->ng, frame_to_world(fr, wo), ls.wi))

@@ -134,28 +134,30 @@ struct pass_ctx {
     uint64_t seed;
 };
 
-static vec3 direct(const struct pass_ctx *c, const struct surface *sf, const frame *fr,
-                   const struct bsdf *b, vec3 wo, struct sampler *smp, uint64_t *rays)
+static vec3 direct(const struct pass_ctx *c, const struct surface *sf, struct light_select_at *at,
+                   const frame *fr, const struct bsdf *b, vec3 wo, struct sampler *smp,
+                   uint64_t *rays)
 {
     vec3 L = v3s(0.0f);
     int i, n = c->cfg->light_samples;
     for (i = 0; i < n; i++)
-        L = v3_add(L, light_sample(c->s, sf, c->time, fr, b, wo, smp, rays, n, c->motion, c->mis));
+        L = v3_add(L, light_sample(c->s, sf, at, c->time, fr, b, wo, smp, rays, n, c->motion, c->mis));
     return L;
 }
 
-/* The MIS weight of emission from light `light` found by a BSDF sample of pdf bsdf_pdf from
- * prev_p, whose shading normal is prev_n. */
-static float emitted_weight(const struct pass_ctx *c, int light, vec3 prev_p, vec3 prev_n,
+/* The MIS weight of emission from light `light` found by a BSDF sample of pdf bsdf_pdf from the
+ * shading point prev, whose light samples chose there. */
+static float emitted_weight(const struct pass_ctx *c, int light, struct light_select_at *prev,
                             float bsdf_pdf, const struct ray *r, float t, const struct surface *sf)
 {
-    return emitted_mis_weight(c->s, c->cfg->light_samples, light, prev_p, prev_n, bsdf_pdf, r, t, sf);
+    return emitted_mis_weight(c->s, c->cfg->light_samples, light, prev, bsdf_pdf, r, t, sf);
 }
 
 /* The light a BSDF sample from the visible point finds directly (MIS-weighted): the other half of
  * the direct light at the visible point, whose light samples direct() took. */
-static vec3 bsdf_emission(const struct pass_ctx *c, const struct surface *sf, const frame *fr,
-                          const struct bsdf *b, vec3 wo, struct sampler *smp, uint64_t *rays)
+static vec3 bsdf_emission(const struct pass_ctx *c, const struct surface *sf,
+                          struct light_select_at *at, const frame *fr, const struct bsdf *b,
+                          vec3 wo, struct sampler *smp, uint64_t *rays)
 {
     const struct scene *s = c->s;
     struct bsdf_sample bs;
@@ -178,7 +180,7 @@ static vec3 bsdf_emission(const struct pass_ctx *c, const struct surface *sf, co
             return v3s(0.0f);
         vec3 Le = mc_environment_radiance(&s->lights[s->env_light], r.d);
         return v3_scale(v3_mul(bs.weight, Le),
-                        emitted_weight(c, s->env_light, sf->p, sf->ns, bs.pdf, &r, INFINITY, NULL));
+                        emitted_weight(c, s->env_light, at, bs.pdf, &r, INFINITY, NULL));
     } else {
         struct surface lsf;
         const struct prim *pr = &s->prims[h.prim];
@@ -190,7 +192,7 @@ static vec3 bsdf_emission(const struct pass_ctx *c, const struct surface *sf, co
         if (v3_is_zero(Le))
             return v3s(0.0f);
         return v3_scale(v3_mul(bs.weight, Le),
-                        emitted_weight(c, pr->light, sf->p, sf->ns, bs.pdf, &r, h.t, &lsf));
+                        emitted_weight(c, pr->light, at, bs.pdf, &r, h.t, &lsf));
     }
 }
 
@@ -214,7 +216,8 @@ static void camera_pixel(const struct pass_ctx *c, struct tile_worker *w, int x,
     struct vpoint *v = &st->vp[i];
     struct sampler smp;
     struct ray r;
-    vec3 L = v3s(0.0f), beta = v3s(1.0f), prev_p, prev_n = v3s(0.0f);
+    vec3 L = v3s(0.0f), beta = v3s(1.0f);
+    struct light_select_at prev; /* the last non-delta vertex (path.c, radiance) */
     vec2 off;
     float prev_pdf = 0.0f, eta_scale = 1.0f;
     int depth = 0, specular = 1;
@@ -231,7 +234,7 @@ static void camera_pixel(const struct pass_ctx *c, struct tile_worker *w, int x,
         mc_camera_at_time(&c->cam, &r, c->time);
     if (c->rs->aov) /* first-hit layers: each pass's camera ray, as a per-ray render's samples */
         mc_aov_record(&c->rs->aov->pixels[i], (int)(c->pass & 1), s, &r);
-    prev_p = r.o;
+    mc_light_select_at(&prev, r.o, v3s(0.0f));
     for (;;) {
         struct hit h;
         struct surface sf;
@@ -247,7 +250,7 @@ static void camera_pixel(const struct pass_ctx *c, struct tile_worker *w, int x,
         if (!trace(s, &r, &h, c->motion)) {
             if (s->env_light >= 0) {
                 float wt = specular || !c->mis ? 1.0f
-                                               : emitted_weight(c, s->env_light, prev_p, prev_n, prev_pdf,
+                                               : emitted_weight(c, s->env_light, &prev, prev_pdf,
                                                                 &r, INFINITY, NULL);
                 Le = mc_environment_radiance(&s->lights[s->env_light], r.d);
                 L = v3_add(L, v3_scale(v3_mul(beta, Le), wt));
@@ -259,7 +262,7 @@ static void camera_pixel(const struct pass_ctx *c, struct tile_worker *w, int x,
         Le = mc_light_emitted(pr, &sf);
         if (!v3_is_zero(Le)) {
             float wt = specular || !c->mis ? 1.0f
-                                           : emitted_weight(c, pr->light, prev_p, prev_n, prev_pdf, &r,
+                                           : emitted_weight(c, pr->light, &prev, prev_pdf, &r,
                                                             h.t, &sf);
             L = v3_add(L, v3_scale(v3_mul(beta, Le), wt));
         }
@@ -271,15 +274,17 @@ static void camera_pixel(const struct pass_ctx *c, struct tile_worker *w, int x,
         uc = mc_sampler_1d(&smp);
         u = mc_sampler_2d(&smp);
         if (!mc_bsdf_is_delta(&b)) {
+            mc_light_select_at(&prev, sf.p, sf.ns);
             if (!(b.alpha > 0.0f && b.alpha < SPPM_GLOSSY_ALPHA)) {
                 float pd = delta_probability(&b, wo);
                 if (!(uc < pd)) {
                     /* The visible point: taken with probability 1 − pd, so weighted by its
                      * inverse. */
                     vec3 bv = v3_scale(beta, 1.0f / (1.0f - pd));
-                    L = v3_add(L, v3_mul(bv, direct(c, &sf, &fr, &b, wo, &smp, &w->rays)));
+                    L = v3_add(L, v3_mul(bv, direct(c, &sf, &prev, &fr, &b, wo, &smp, &w->rays)));
                     if (c->mis)
-                        L = v3_add(L, v3_mul(bv, bsdf_emission(c, &sf, &fr, &b, wo, &smp, &w->rays)));
+                        L = v3_add(L, v3_mul(bv, bsdf_emission(c, &sf, &prev, &fr, &b, wo, &smp,
+                                                               &w->rays)));
                     v->b = b;
                     v->fr = fr;
                     v->p = sf.p;
@@ -293,7 +298,7 @@ static void camera_pixel(const struct pass_ctx *c, struct tile_worker *w, int x,
                 }
                 /* The delta lobe, chosen with probability pd: the sample below is it. */
             } else {
-                L = v3_add(L, v3_mul(beta, direct(c, &sf, &fr, &b, wo, &smp, &w->rays)));
+                L = v3_add(L, v3_mul(beta, direct(c, &sf, &prev, &fr, &b, wo, &smp, &w->rays)));
             }
         }
         if (!mc_bsdf_sample(&b, wo, uc, u, MC_RADIANCE, &bs))
@@ -308,8 +313,6 @@ static void camera_pixel(const struct pass_ctx *c, struct tile_worker *w, int x,
             break;
         specular = bs.delta;
         prev_pdf = bs.pdf;
-        prev_p = sf.p;
-        prev_n = sf.ns;
         r.o = ray_spawn(sf.p, side_normal(sf.ng, wi), sf.err);
         r.d = wi;
         r.tmax = INFINITY;

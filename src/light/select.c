@@ -41,14 +41,14 @@ static void angle_sub(double cos_a, double sin_a, double cos_b, double sin_b, do
 /* max(0, x), inline (libm's fmax is a call, in the innermost loop of a light sample). */
 static double positive(double x) { return x > 0.0 ? x : 0.0; }
 
-double mc_light_importance(const struct light_bounds *b, vec3 p, vec3 n)
+/* The importance of a node's bounds to the point p with unit normal n (zero: none): phi · cos θ' ·
+ * cos θi' / d², with θ' and θi' the smallest angles, over the directions between p and the box,
+ * to the emitters' normals (none beyond θe) and to n (Conty Estevez and Kulla 2018, eq. 3); d the
+ * distance to the box's centre, no less than half its diagonal. */
+static double importance(const struct light_node *b, vec3 p, vec3 n)
 {
-    double cx = 0.5 * ((double)b->box.lo.x + b->box.hi.x), cy = 0.5 * ((double)b->box.lo.y + b->box.hi.y);
-    double cz = 0.5 * ((double)b->box.lo.z + b->box.hi.z);
-    double ex = (double)b->box.hi.x - b->box.lo.x, ey = (double)b->box.hi.y - b->box.lo.y;
-    double ez = (double)b->box.hi.z - b->box.lo.z;
-    double dx = p.x - cx, dy = p.y - cy, dz = p.z - cz, d2 = dx * dx + dy * dy + dz * dz;
-    double r2 = 0.25 * (ex * ex + ey * ey + ez * ez), d, cos_b, sin_b, cos_w, sin_w, cos_o, sin_o;
+    double dx = p.x - b->center[0], dy = p.y - b->center[1], dz = p.z - b->center[2];
+    double d2 = dx * dx + dy * dy + dz * dz, r2 = b->r2, d, cos_b, sin_b, cos_w, sin_w;
     double cos_x, sin_x, cos_p, sin_p, imp;
     if (!(d2 > r2)) /* p in the box's bounding sphere: every direction and orientation possible */
         return b->phi / (r2 > 1e-30 ? r2 : 1e-30);
@@ -61,11 +61,9 @@ double mc_light_importance(const struct light_bounds *b, vec3 p, vec3 n)
     if (b->two_sided)
         cos_w = fabs(cos_w);
     sin_w = sqrt(positive(1.0 - cos_w * cos_w));
-    cos_o = b->cos_o;
-    sin_o = sqrt(positive(1.0 - cos_o * cos_o));
     /* θ' = max(0, θw − θo − θb): the smallest angle between an emitting normal and a direction
      * from the box to p; beyond θe nothing arrives. */
-    angle_sub(cos_w, sin_w, cos_o, sin_o, &cos_x, &sin_x);
+    angle_sub(cos_w, sin_w, b->cos_o, b->sin_o, &cos_x, &sin_x);
     angle_sub(cos_x, sin_x, cos_b, sin_b, &cos_p, &sin_p);
     if (cos_p <= b->cos_e)
         return 0.0;
@@ -214,13 +212,34 @@ static size_t split(struct item *it, size_t n)
     return first > 0 && first < n ? first : 0;
 }
 
-/* Build the subtree of items [lo, hi) at depth `depth` on the path `trail`; its node's index. */
-static size_t build(struct builder *bd, size_t lo, size_t hi, uint64_t trail, int depth)
+/* A node's bounds b in the form the importance reads. */
+static void node_set(struct light_node *nd, const struct light_bounds *b)
+{
+    double ex = (double)b->box.hi.x - b->box.lo.x, ey = (double)b->box.hi.y - b->box.lo.y;
+    double ez = (double)b->box.hi.z - b->box.lo.z;
+    nd->center[0] = 0.5 * ((double)b->box.lo.x + b->box.hi.x);
+    nd->center[1] = 0.5 * ((double)b->box.lo.y + b->box.hi.y);
+    nd->center[2] = 0.5 * ((double)b->box.lo.z + b->box.hi.z);
+    nd->r2 = 0.25 * (ex * ex + ey * ey + ez * ez);
+    nd->sin_o = sqrt(positive(1.0 - (double)b->cos_o * b->cos_o));
+    nd->axis = b->axis;
+    nd->cos_o = b->cos_o;
+    nd->cos_e = b->cos_e;
+    nd->phi = b->phi;
+    nd->two_sided = (uint16_t)(b->two_sided != 0);
+}
+
+/* Build the subtree of items [lo, hi) at depth `depth` on the path `trail`; its node's index, and
+ * its bounds in *b. */
+static size_t build(struct builder *bd, size_t lo, size_t hi, uint64_t trail, int depth,
+                    struct light_bounds *b)
 {
     size_t node = bd->next++, mid = 0, second;
     struct light_node *nd = &bd->ls->nodes[node];
+    struct light_bounds b0, b1;
     if (hi - lo == 1) {
-        nd->b = bd->items[lo].b;
+        *b = bd->items[lo].b;
+        node_set(nd, b);
         nd->index = bd->items[lo].light;
         nd->leaf = 1;
         bd->ls->trail[nd->index] = trail;
@@ -229,10 +248,11 @@ static size_t build(struct builder *bd, size_t lo, size_t hi, uint64_t trail, in
     if (depth < SAH_DEPTH)
         mid = split(bd->items + lo, hi - lo);
     mid = mid ? lo + mid : lo + (hi - lo) / 2;
-    build(bd, lo, mid, trail, depth + 1);
-    second = build(bd, mid, hi, trail | (uint64_t)1 << depth, depth + 1);
+    build(bd, lo, mid, trail, depth + 1, &b0);
+    second = build(bd, mid, hi, trail | (uint64_t)1 << depth, depth + 1, &b1);
+    *b = bounds_union(&b0, &b1);
     nd = &bd->ls->nodes[node]; /* (the same array: nodes are preallocated) */
-    nd->b = bounds_union(&bd->ls->nodes[node + 1].b, &bd->ls->nodes[second].b);
+    node_set(nd, b);
     nd->index = (uint32_t)second;
     nd->leaf = 0;
     return node;
@@ -289,9 +309,10 @@ mcrt_status mc_light_select_build(struct light_select *ls, enum light_select_kin
         if (!ls->nodes)
             st = mc_fail(d, MCRT_ERR_NOMEM, "out of memory");
         else {
+            struct light_bounds all;
             bd.ls = ls;
             bd.next = 0;
-            build(&bd, 0, m, 0, 0);
+            build(&bd, 0, m, 0, 0, &all);
             ls->node_count = bd.next;
         }
     }
@@ -315,24 +336,40 @@ void mc_light_select_free(struct light_select *ls)
 
 /* ---- Choosing ---- */
 
-/* The descent: with target < 0, choose by u; else follow target's trail. The probabilities are
- * multiplied in the same order either way, so that a light's pmf is the same number both ways. */
-static int descend(const struct light_select *ls, vec3 p, vec3 n, double u, int target, double *pmf)
+/* The part of a choice that depends on the point alone (select.h, struct light_select_at). */
+static void select_top(const struct light_select *ls, struct light_select_at *at)
 {
     const struct light_node *nodes = ls->nodes;
-    double c[2] = {0.0, 0.0}, tree = 0.0, p_env, pm;
+    double tree;
+    at->c[0] = at->c[1] = 0.0;
+    if (nodes && nodes[0].leaf)
+        at->c[0] = importance(&nodes[0], at->p, at->n);
+    else if (nodes) {
+        at->c[0] = importance(&nodes[1], at->p, at->n);
+        at->c[1] = importance(&nodes[nodes[0].index], at->p, at->n);
+    }
+    tree = at->c[0] + at->c[1];
+    at->p_env = ls->env < 0 ? 0.0 : tree > 0.0 ? ls->env_importance / (ls->env_importance + tree) : 1.0;
+    at->ready = 1;
+}
+
+/* The descent: with target < 0, choose by u; else follow target's trail. The probabilities are
+ * multiplied in the same order either way, so that a light's pmf is the same number both ways. */
+static int descend(const struct light_select *ls, struct light_select_at *at, double u, int target,
+                   double *pmf)
+{
+    const struct light_node *nodes = ls->nodes;
+    vec3 p = at->p, n = at->n;
+    double c[2], p_env, pm;
     uint64_t trail = 0;
     size_t node = 0;
     int depth = 0;
     *pmf = 0.0;
-    if (nodes && nodes[0].leaf)
-        tree = mc_light_importance(&nodes[0].b, p, n);
-    else if (nodes) {
-        c[0] = mc_light_importance(&nodes[1].b, p, n);
-        c[1] = mc_light_importance(&nodes[nodes[0].index].b, p, n);
-        tree = c[0] + c[1];
-    }
-    p_env = ls->env < 0 ? 0.0 : tree > 0.0 ? ls->env_importance / (ls->env_importance + tree) : 1.0;
+    if (!at->ready)
+        select_top(ls, at);
+    c[0] = at->c[0];
+    c[1] = at->c[1];
+    p_env = at->p_env;
     if (target >= 0 && target == ls->env) {
         *pmf = p_env;
         return target;
@@ -354,16 +391,16 @@ static int descend(const struct light_select *ls, vec3 p, vec3 n, double u, int 
         double sum;
         int bit;
         if (depth > 0) {
-            c[0] = mc_light_importance(&nodes[node + 1].b, p, n);
-            c[1] = mc_light_importance(&nodes[nodes[node].index].b, p, n);
+            c[0] = importance(&nodes[node + 1], p, n);
+            c[1] = importance(&nodes[nodes[node].index], p, n);
         }
         sum = c[0] + c[1];
         if (!(sum > 0.0)) {
             /* Neither child can reach p, although their union's looser bounds (or, at the root,
              * no bounds at all) did not rule it out: go on by power, so that the pmf still sums
              * to 1. The lights found then send p nothing, which their samples will show. */
-            c[0] = nodes[node + 1].b.phi;
-            c[1] = nodes[nodes[node].index].b.phi;
+            c[0] = nodes[node + 1].phi;
+            c[1] = nodes[nodes[node].index].phi;
             sum = c[0] + c[1];
         }
         if (target < 0) {
@@ -381,7 +418,8 @@ static int descend(const struct light_select *ls, vec3 p, vec3 n, double u, int 
     return (int)nodes[node].index;
 }
 
-int mc_light_select_sample(const struct light_select *ls, vec3 p, vec3 n, double u, double *pmf)
+int mc_light_select_sample(const struct light_select *ls, struct light_select_at *at, double u,
+                           double *pmf)
 {
     /* One light: nothing to choose (the integrator draws no number for it either), and neither
      * an alias table nor a descent of the tree to make (callgrind, the Cornell box at 64x64, 16
@@ -396,10 +434,10 @@ int mc_light_select_sample(const struct light_select *ls, vec3 p, vec3 n, double
         *pmf = li < 0 ? 0.0 : f;
         return li;
     }
-    return descend(ls, p, n, u, -1, pmf);
+    return descend(ls, at, u, -1, pmf);
 }
 
-double mc_light_select_pmf(const struct light_select *ls, vec3 p, vec3 n, int light)
+double mc_light_select_pmf(const struct light_select *ls, struct light_select_at *at, int light)
 {
     double pmf;
     if (light < 0)
@@ -408,6 +446,6 @@ double mc_light_select_pmf(const struct light_select *ls, vec3 p, vec3 n, int li
         return light == 0 ? 1.0 : 0.0;
     if (ls->kind == LIGHT_SELECT_POWER)
         return mc_alias_pmf(&ls->power, (size_t)light);
-    descend(ls, p, n, 0.0, light, &pmf);
+    descend(ls, at, 0.0, light, &pmf);
     return pmf;
 }

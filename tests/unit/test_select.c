@@ -65,8 +65,24 @@ static char *many_lights(int tris, int env, uint64_t seed)
 
 static void set_kind(struct scene *s, enum light_select_kind k) { s->light_select.kind = k; }
 
+/* A choice and a pmf at p, n, each from a shading point of its own (light/select.h). */
+static int sample_at(const struct light_select *ls, vec3 p, vec3 n, double u, double *pmf)
+{
+    struct light_select_at at;
+    mc_light_select_at(&at, p, n);
+    return mc_light_select_sample(ls, &at, u, pmf);
+}
+static double pmf_at(const struct light_select *ls, vec3 p, vec3 n, int light)
+{
+    struct light_select_at at;
+    mc_light_select_at(&at, p, n);
+    return mc_light_select_pmf(ls, &at, light);
+}
+
 /* Sum of the pmf over every light at 300 random points (in and around the lights' box) with random
- * normals (a tenth zero), and whether each sample's pmf equals mc_light_select_pmf bit for bit. */
+ * normals (a tenth zero), and whether each sample's pmf equals mc_light_select_pmf bit for bit,
+ * both from a fresh shading point and from the one the sample chose at (as the path tracer asks:
+ * its top computed by the sample, light/select.h). */
 static void test_sums(const char *what, int env)
 {
     char *text = many_lights(300, env, 11);
@@ -88,14 +104,18 @@ static void test_sums(const char *what, int env)
             vec3 n = k % 10 ? random_direction(&g) : v3s(0.0f);
             double sum = 0.0;
             for (i = 0; i < (int)s.light_count; i++)
-                sum += mc_light_select_pmf(&s.light_select, p, n, i);
+                sum += pmf_at(&s.light_select, p, n, i);
             if (fabs(sum - 1.0) > worst)
                 worst = fabs(sum - 1.0);
             for (i = 0; i < 20; i++) {
+                struct light_select_at at;
                 double pmf;
-                int li = mc_light_select_sample(&s.light_select, p, n, pcg32_double(&g), &pmf);
+                int li;
+                mc_light_select_at(&at, p, n);
+                li = mc_light_select_sample(&s.light_select, &at, pcg32_double(&g), &pmf);
                 chosen += li >= 0;
-                mismatched += li < 0 || !(pmf > 0.0) || pmf != mc_light_select_pmf(&s.light_select, p, n, li);
+                mismatched += li < 0 || !(pmf > 0.0) || pmf != pmf_at(&s.light_select, p, n, li)
+                              || pmf != mc_light_select_pmf(&s.light_select, &at, li);
             }
         }
         T_NOTE("%s, %s: largest |sum of pmf - 1| over 300 points %.2e", what, mc_light_select_names[kind],
@@ -134,14 +154,14 @@ static void test_chi2(void)
         memset(count, 0, s.light_count * sizeof *count);
         for (i = 0; i < N; i++) {
             double pmf;
-            int li = mc_light_select_sample(&s.light_select, p, n, pcg32_double(&g), &pmf);
+            int li = sample_at(&s.light_select, p, n, pcg32_double(&g), &pmf);
             if (li < 0)
                 none++;
             else
                 count[li] += 1.0;
         }
         for (j = 0; j < s.light_count; j++) {
-            double e = N * mc_light_select_pmf(&s.light_select, p, n, (int)j);
+            double e = N * pmf_at(&s.light_select, p, n, (int)j);
             if (e < 5.0) {
                 pool_e += e;
                 pool_o += count[j];
@@ -197,7 +217,7 @@ static void test_conservative(void)
             if (!(fabsf(v3_dot(w, n)) > 1e-3f))
                 continue;
             tried++;
-            zero += !(mc_light_select_pmf(&s.light_select, p, n, (int)i) > 0.0);
+            zero += !(pmf_at(&s.light_select, p, n, (int)i) > 0.0);
         }
     }
     T_NOTE("conservative bounds: %ld (point, light) pairs that receive light, %ld with pmf 0", tried, zero);
@@ -210,7 +230,7 @@ static double nee(const struct scene *s, vec3 p, vec3 n, pcg32 *g)
 {
     struct light_sample ls;
     double pmf;
-    int li = mc_light_select_sample(&s->light_select, p, n, pcg32_double(g), &pmf);
+    int li = sample_at(&s->light_select, p, n, pcg32_double(g), &pmf);
     vec2 u;
     u.x = pcg32_float(g);
     u.y = pcg32_float(g);
