@@ -71,8 +71,9 @@ static inline float emitted_mis_weight(const struct scene *s, int n_samples, int
                                        struct light_select_at *at, float bsdf_pdf,
                                        const struct ray *r, float t, const struct surface *sf)
 {
+    vec3 p = v3((float)at->p[0], (float)at->p[1], (float)at->p[2]); /* exact: made from floats */
     float light_pdf = (float)mc_light_select_pmf(&s->light_select, at, light)
-                      * mc_light_pdf(&s->light_scene, &s->lights[light], at->p, r->time, r->d, t, sf);
+                      * mc_light_pdf(&s->light_scene, &s->lights[light], p, r->time, r->d, t, sf);
     return power_heuristic(bsdf_pdf, (float)n_samples * light_pdf);
 }
 

@@ -41,13 +41,14 @@ static void angle_sub(double cos_a, double sin_a, double cos_b, double sin_b, do
 /* max(0, x), inline (libm's fmax is a call, in the innermost loop of a light sample). */
 static double positive(double x) { return x > 0.0 ? x : 0.0; }
 
-/* The importance of a node's bounds to the point p with unit normal n (zero: none): phi · cos θ' ·
- * cos θi' / d², with θ' and θi' the smallest angles, over the directions between p and the box,
- * to the emitters' normals (none beyond θe) and to n (Conty Estevez and Kulla 2018, eq. 3); d the
- * distance to the box's centre, no less than half its diagonal. */
-static double importance(const struct light_node *b, vec3 p, vec3 n)
+/* The importance of a node's bounds to the point p with unit normal n (zero: none) of at: phi ·
+ * cos θ' · cos θi' / d², with θ' and θi' the smallest angles, over the directions between p and
+ * the box, to the emitters' normals (none beyond θe) and to n (Conty Estevez and Kulla 2018, eq.
+ * 3); d the distance to the box's centre, no less than half its diagonal. */
+static double importance(const struct light_node *b, const struct light_select_at *at)
 {
-    double dx = p.x - b->center[0], dy = p.y - b->center[1], dz = p.z - b->center[2];
+    const double *n = at->n;
+    double dx = at->p[0] - b->center[0], dy = at->p[1] - b->center[1], dz = at->p[2] - b->center[2];
     double d2 = dx * dx + dy * dy + dz * dz, r2 = b->r2, d, cos_b, sin_b, cos_w, sin_w;
     double cos_x, sin_x, cos_p, sin_p, imp;
     if (!(d2 > r2)) /* p in the box's bounding sphere: every direction and orientation possible */
@@ -68,10 +69,10 @@ static double importance(const struct light_node *b, vec3 p, vec3 n)
     if (cos_p <= b->cos_e)
         return 0.0;
     imp = b->phi * cos_p / d2;
-    if (n.x != 0.0f || n.y != 0.0f || n.z != 0.0f) {
+    if (at->has_n) {
         /* θi' = max(0, θi − θb), θi between n and the direction to the centre (either side:
          * the surface may transmit). */
-        double cos_i = fabs(n.x * dx + n.y * dy + n.z * dz), sin_i = sqrt(positive(1.0 - cos_i * cos_i));
+        double cos_i = fabs(n[0] * dx + n[1] * dy + n[2] * dz), sin_i = sqrt(positive(1.0 - cos_i * cos_i));
         double cos_ip, sin_ip;
         angle_sub(cos_i, sin_i, cos_b, sin_b, &cos_ip, &sin_ip);
         imp *= positive(cos_ip);
@@ -343,10 +344,10 @@ static void select_top(const struct light_select *ls, struct light_select_at *at
     double tree;
     at->c[0] = at->c[1] = 0.0;
     if (nodes && nodes[0].leaf)
-        at->c[0] = importance(&nodes[0], at->p, at->n);
+        at->c[0] = importance(&nodes[0], at);
     else if (nodes) {
-        at->c[0] = importance(&nodes[1], at->p, at->n);
-        at->c[1] = importance(&nodes[nodes[0].index], at->p, at->n);
+        at->c[0] = importance(&nodes[1], at);
+        at->c[1] = importance(&nodes[nodes[0].index], at);
     }
     tree = at->c[0] + at->c[1];
     at->p_env = ls->env < 0 ? 0.0 : tree > 0.0 ? ls->env_importance / (ls->env_importance + tree) : 1.0;
@@ -359,7 +360,6 @@ static int descend(const struct light_select *ls, struct light_select_at *at, do
                    double *pmf)
 {
     const struct light_node *nodes = ls->nodes;
-    vec3 p = at->p, n = at->n;
     double c[2], p_env, pm;
     uint64_t trail = 0;
     size_t node = 0;
@@ -391,8 +391,8 @@ static int descend(const struct light_select *ls, struct light_select_at *at, do
         double sum;
         int bit;
         if (depth > 0) {
-            c[0] = importance(&nodes[node + 1], p, n);
-            c[1] = importance(&nodes[nodes[node].index], p, n);
+            c[0] = importance(&nodes[node + 1], at);
+            c[1] = importance(&nodes[nodes[node].index], at);
         }
         sum = c[0] + c[1];
         if (!(sum > 0.0)) {
@@ -407,7 +407,8 @@ static int descend(const struct light_select *ls, struct light_select_at *at, do
             double q = c[0] / sum;
             bit = !(u < q);
             u = bit ? (u - q) / (1.0 - q) : u / q;
-            u = fmin(u, 0x1.fffffffffffffp-1);
+            if (u > 0x1.fffffffffffffp-1) /* (inline: libm's fmin is a call) */
+                u = 0x1.fffffffffffffp-1;
         } else
             bit = (int)(trail >> depth & 1u);
         pm *= c[bit] / sum;

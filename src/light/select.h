@@ -71,17 +71,19 @@ void mc_light_select_free(struct light_select *ls);
  * at the next vertex compute the top once (glossy-floor, where the top is the whole tree: the
  * pmf's descent cost 231 instructions, 3.5% of the render's, most of it that importance again). */
 struct light_select_at {
-    vec3 p, n;
+    double p[3], n[3]; /* in double, as the importance reads them */
+    int has_n;         /* n is not zero */
+    int ready;         /* c and p_env are set */
     double c[2];  /* the importance of the root's two children; a leaf root's in c[0], c[1] 0 */
     double p_env; /* the probability of choosing the environment */
-    int ready;    /* c and p_env are set */
 };
 
 /* A shading point at p, n, its shared part not computed yet. */
 static inline void mc_light_select_at(struct light_select_at *at, vec3 p, vec3 n)
 {
-    at->p = p;
-    at->n = n;
+    at->p[0] = p.x, at->p[1] = p.y, at->p[2] = p.z;
+    at->n[0] = n.x, at->n[1] = n.y, at->n[2] = n.z;
+    at->has_n = n.x != 0.0f || n.y != 0.0f || n.z != 0.0f;
     at->ready = 0;
 }
 
