@@ -49,16 +49,18 @@ static double importance(const struct light_node *b, const struct light_select_a
 {
     const double *n = at->n;
     double dx = at->p[0] - b->center[0], dy = at->p[1] - b->center[1], dz = at->p[2] - b->center[2];
-    double d2 = dx * dx + dy * dy + dz * dz, r2 = b->r2, d, cos_b, sin_b, cos_w, sin_w;
+    double d2 = dx * dx + dy * dy + dz * dz, r2 = b->r2, inv_d, cos_b, sin_b, cos_w, sin_w;
     double cos_x, sin_x, cos_p, sin_p, imp;
     if (!(d2 > r2)) /* p in the box's bounding sphere: every direction and orientation possible */
         return b->phi / (r2 > 1e-30 ? r2 : 1e-30);
-    /* θb: the half-angle of the cone from p that holds the bounding sphere. */
-    sin_b = sqrt(r2 / d2);
-    cos_b = sqrt(1.0 - r2 / d2);
-    d = sqrt(d2);
-    dx /= d, dy /= d, dz /= d; /* from the centre to p */
-    cos_w = b->axis.x * dx + b->axis.y * dy + b->axis.z * dz;
+    /* One division: the cosines below are dot products with (dx, dy, dz) scaled by 1/d, rather
+     * than with the direction normalised (three divisions and the square roots of r²/d² and
+     * 1 − r²/d², a chain of long latencies: many-lights spends a third of its time here). */
+    inv_d = 1.0 / sqrt(d2);
+    /* θb: the half-angle of the cone from p that holds the bounding sphere, sin θb = r/d. */
+    sin_b = b->r * inv_d;
+    cos_b = sqrt(positive(1.0 - sin_b * sin_b));
+    cos_w = (b->axis.x * dx + b->axis.y * dy + b->axis.z * dz) * inv_d; /* from the centre to p */
     if (b->two_sided)
         cos_w = fabs(cos_w);
     sin_w = sqrt(positive(1.0 - cos_w * cos_w));
@@ -68,11 +70,12 @@ static double importance(const struct light_node *b, const struct light_select_a
     angle_sub(cos_x, sin_x, cos_b, sin_b, &cos_p, &sin_p);
     if (cos_p <= b->cos_e)
         return 0.0;
-    imp = b->phi * cos_p / d2;
+    imp = b->phi * cos_p * (inv_d * inv_d);
     if (at->has_n) {
         /* θi' = max(0, θi − θb), θi between n and the direction to the centre (either side:
          * the surface may transmit). */
-        double cos_i = fabs(n[0] * dx + n[1] * dy + n[2] * dz), sin_i = sqrt(positive(1.0 - cos_i * cos_i));
+        double cos_i = fabs(n[0] * dx + n[1] * dy + n[2] * dz) * inv_d;
+        double sin_i = sqrt(positive(1.0 - cos_i * cos_i));
         double cos_ip, sin_ip;
         angle_sub(cos_i, sin_i, cos_b, sin_b, &cos_ip, &sin_ip);
         imp *= positive(cos_ip);
@@ -222,6 +225,7 @@ static void node_set(struct light_node *nd, const struct light_bounds *b)
     nd->center[1] = 0.5 * ((double)b->box.lo.y + b->box.hi.y);
     nd->center[2] = 0.5 * ((double)b->box.lo.z + b->box.hi.z);
     nd->r2 = 0.25 * (ex * ex + ey * ey + ez * ez);
+    nd->r = sqrt(nd->r2);
     nd->sin_o = sqrt(positive(1.0 - (double)b->cos_o * b->cos_o));
     nd->axis = b->axis;
     nd->cos_o = b->cos_o;

@@ -37,7 +37,7 @@ extern const char *const mc_light_select_names[LIGHT_SELECT_COUNT + 1];
  * render's instructions, 161 a node before). */
 struct light_node {
     double center[3]; /* the centre of the bounds' box */
-    double r2;        /* half its diagonal, squared: the radius of its bounding sphere */
+    double r, r2;     /* half its diagonal and its square: the radius of its bounding sphere */
     double sin_o;     /* sin θo */
     vec3 axis;
     float cos_o, cos_e, phi;
