@@ -257,7 +257,8 @@ void mcrt_render_free(mcrt_render *r);
 
 /* Denoise the EXR at in as opt.denoise does a render: in must hold the layers A and B and the
  * per-half layers that a render with opt.denoise saves (albedo.A, albedo.B, normal.A, normal.B,
- * depth.A, depth.B, emission.A, emission.B), all of one size. out (EXR) gets the denoised image
+ * depth.A, depth.B, emission.A, emission.B, variance.A, variance.B, emission.var), all of one
+ * size. out (EXR) gets the denoised image
  * as its RGB and the layer "raw", written to a temporary file renamed when complete. threads 0:
  * all cores. est_raw and est_denoised, when not NULL, get the estimated relMSE of the raw and the
  * denoised image, est_denoised_sd the latter's own standard deviation (as mcrt_stats'

@@ -477,8 +477,8 @@ double mcrt_seconds_to_relmse(const mcrt_stats *st, double relmse)
 }
 
 /* The aov.h layer of each of the denoiser's (api/denoise.h). */
-static const enum aov_kind denoise_aov[DENOISE_LAYERS] = {AOV_ALBEDO, AOV_NORMAL, AOV_DEPTH,
-                                                          AOV_EMISSION};
+static const enum aov_kind denoise_aov[DENOISE_VARIANCE] = {AOV_ALBEDO, AOV_NORMAL, AOV_DEPTH,
+                                                            AOV_EMISSION};
 #define DENOISE_IMAGES (3 + 2 * DENOISE_LAYERS)
 
 /* The denoiser's inputs from r's film and first-surface layers: the halves, each layer per half
@@ -494,7 +494,10 @@ static const float *denoise_inputs(const mcrt_render *r, float *buf, const float
         mc_film_resolve_half(&r->film, h, buf + (size_t)h * n3);
         for (l = 0; l < DENOISE_LAYERS; l++) {
             float *dst = buf + (size_t)(2 + 2 * l + h) * n3;
-            mc_aov_resolve(&r->aov, denoise_aov[l], h, dst);
+            if (l == DENOISE_VARIANCE)
+                mc_film_half_variance(&r->film, h, dst);
+            else
+                mc_aov_resolve(&r->aov, denoise_aov[l], h, dst);
             layer[l][h] = dst;
         }
     }

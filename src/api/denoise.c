@@ -14,7 +14,7 @@
 #include "render/film.h"
 
 const char *const mc_denoise_layer_names[DENOISE_LAYERS] = {"albedo", "normal", "depth",
-                                                            "emission"};
+                                                            "emission", "variance"};
 
 /* The film of the halves a and b: one sample standing for each half of a pixel, for the film's
  * estimates from its halves (render/film.h). Returns 0, or -1 when out of memory. */
@@ -87,6 +87,7 @@ mcrt_status mc_denoise_layers(const float *const halves[2],
         float *planes = buf + 3 * n3 + (size_t)h * NPLANES * n;
         in.color[h] = halves[h];
         in.emission[h] = layer[DENOISE_EMISSION][h];
+        in.color_var[h] = layer[DENOISE_VARIANCE][h];
         in.emission_var = emission_var;
         in.depth[h] = planes + (size_t)(NPLANES - 1) * n; /* the last plane (below) */
         for (p = 0; p < NPLANES; p++) {

@@ -6,9 +6,12 @@
 
 #include "core/diag.h"
 
-/* The first-surface layers the denoiser reads, each per half: in an EXR, "NAME.A" and "NAME.B";
+/* The layers the denoiser reads, each per half: in an EXR, "NAME.A" and "NAME.B". The
+ * first-surface layers of render/aov.h, and "variance", the variance of the half's mean from its
+ * own samples (mc_film_half_variance);
  * and the variance of the emission's pixel means (render/aov.h), the layer "emission.var". */
-enum { DENOISE_ALBEDO, DENOISE_NORMAL, DENOISE_DEPTH, DENOISE_EMISSION, DENOISE_LAYERS };
+enum { DENOISE_ALBEDO, DENOISE_NORMAL, DENOISE_DEPTH, DENOISE_EMISSION, DENOISE_VARIANCE,
+       DENOISE_LAYERS };
 extern const char *const mc_denoise_layer_names[DENOISE_LAYERS];
 #define MC_DENOISE_EMISSION_VAR "emission.var"
 

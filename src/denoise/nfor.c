@@ -46,17 +46,41 @@
  * inputs): {0.5, 2} lowered the true relMSE of all eight renders against {0.5, 1}, by 3-23%
  * ({0.5, 1.5}, {0.5, 3} and {0.5, 4} did about as well, {0.25, 2} worse on the Cornell box). */
 static const float reg_k[2] = {0.5f, 2.0f};
-/* The colour variance the regression's weights divide by is the half's (A − B)²/2 averaged over
- * (2·REG_VAR_R + 1)² pixels, the patch's 7×7 and a pixel around it, rather than the 3×3 of the
+/* The colour variance the regression's weights divide by, a half's (OWN_R below), is averaged
+ * over (2·REG_VAR_R + 1)² pixels, the patch's 7×7 and a pixel around it, rather than the 3×3 of the
  * prefilter and the maps: a firefly's one-degree-of-freedom variance, spread over 3×3 only, made
  * its neighbours' patches match anything, so that the regression spread it and the error
  * estimate, which takes the weights as independent of the other half, missed it. Measured by
- * make bench-denoise (the same inputs; radius 1 -> 4): cornell-spheres 16 spp relMSE 1.53e-2 ->
+ * make bench-denoise (the same inputs, with (A − B)²/2 as the variance then; radius 1 -> 4):
+ * cornell-spheres 16 spp relMSE 1.53e-2 ->
  * 9.5e-3, 64 spp 3.08e-3 -> 2.88e-3, est/true 0.48 -> 0.83 and 0.27 -> 0.57; cornell 16 spp
  * 7.69e-4 -> 7.58e-4, 64 spp 1.69e-4 -> 1.65e-4. Radii 2-3 and 6-9 did worse on cornell-spheres
  * at 16 spp (1.1-1.5e-2), 5 about as well; one variance for the whole image (each channel's
  * mean) did about as well here, but cannot follow a scene's brightness. */
 #define REG_VAR_R (REG_F + 1)
+/* The regression's weights for half A come from B's colour and B's variance alone, and B's from
+ * A's: the variance of a half's mean from its own samples (nfor.h). With (A − B)²/2, which A's
+ * noise moves as much as B's, A's weights followed A, where the error estimate takes them as
+ * fixed; on the scenes of make bench-denoise (10 seeds at 160², 16 and 64 spp) the denoised
+ * relMSE fell by 0.9% and 1.8% on the Cornell box and 8% and 3% on cornell-spheres, and at
+ * their own sizes (512², 400²) by 0.9% and 0.7%, and 9% and 2%. Those variances are biased up
+ * for stratified and Sobol samples (film.h), by a factor that varies over the image, so each is
+ * calibrated by the ratio of the box means, over (2·OWN_R + 1)² pixels, of the halves'
+ * (A − B)²/2, unbiased, and of their own variances: a ratio that any one pixel moves by less than
+ * half a percent, and that follows the sampler's gain from one part of the image to another
+ * (the Cornell box's lit walls and its ceiling, lit only indirectly). 15×15, as the maps. */
+#define OWN_R 7
+/* The denoised value f squared overstates μ², which the relative error divides by, by MSE(f) on
+ * average, and by far more where a noisy spot is left bright: E[f²] = μ² + MSE(f). Each pixel's
+ * μ² is taken as no more than the square of the (2·MEAN_SQ_R + 1)² mean of the denoised image
+ * around it, a far less noisy value, which a lone bright pixel moves by a 25th of its excess. On
+ * cornell-spheres at 400² (make bench-denoise, 10 seeds), where some 600 pixels that the
+ * caustic's noise left over twice as bright as the truth made four fifths of the difference
+ * between dividing by f² and by the reference's μ² (two seeds), the estimate of the whole image
+ * read 0.67 and 0.47 of the truth at 16 and 64 spp with f², 1.14 and 0.84 with this; the Cornell
+ * box's at 160² and 16 spp moved from 1.36 to 1.43. A legitimately bright pixel, a thin line,
+ * counts a little more error than it has. */
+#define MEAN_SQ_R 2
 
 /* NL-means distances (Rousselle, Manzi and Zwicker 2012, eq. 3): the patch distance, with the
  * variances' share taken off, over the variances; clamped so exp() stays finite (and a NaN
@@ -973,33 +997,80 @@ static void box_mean(const float *v, int nc, int width, int height, int r, float
     }
 }
 
+/* Whether pixel i's halves' own variances are those of the colour filtered: not where either
+ * half has emission, which is taken out of the colour (nfor.h) but not out of those variances. */
+static int own_pixel(const struct nfor_input *in, size_t i)
+{
+    int h, c;
+    for (h = 0; h < 2 && in->emission[0]; h++)
+        for (c = 0; c < 3; c++)
+            if (in->emission[h][3 * i + (size_t)c] != 0.0f)
+                return 0;
+    return 1;
+}
+
+/* Each half's variance from its own samples (in->color_var), calibrated by OWN_R's local ratio,
+ * into own[0] and own[1]; where the pixel has emission or a firefly, var, the pixel's (A − B)²/2
+ * after the fireflies' split (0 at a firefly). Through the four images of scratch and tmp. */
+static void own_variance(const struct nfor_input *in, const float *var, const struct firefly *ff,
+                         int nff, float *const scratch[4], float *tmp, float *const own[2])
+{
+    float *num = scratch[0], *den = scratch[1], *snum = scratch[2], *sden = scratch[3];
+    int w = in->width, h = in->height, half;
+    size_t n3 = (size_t)w * (size_t)h * 3, i;
+    for (i = 0; i < n3; i++) {
+        int o = own_pixel(in, i / 3);
+        num[i] = o ? var[i] : 0.0f;
+        den[i] = o ? 0.5f * (in->color_var[0][i] + in->color_var[1][i]) : 0.0f;
+    }
+    for (i = 0; i < (size_t)nff; i++) {
+        size_t p = 3 * (size_t)ff[i].pixel;
+        num[p] = num[p + 1] = num[p + 2] = den[p] = den[p + 1] = den[p + 2] = 0.0f;
+    }
+    box_mean(num, 3, w, h, OWN_R, tmp, snum);
+    box_mean(den, 3, w, h, OWN_R, tmp, sden);
+    for (half = 0; half < 2; half++) {
+        for (i = 0; i < n3; i++)
+            own[half][i] = !own_pixel(in, i / 3) ? var[i]
+                           : (sden[i] > 0.0f ? snum[i] / sden[i] : 1.0f) * in->color_var[half][i];
+        for (i = 0; i < (size_t)nff; i++) {
+            size_t p = 3 * (size_t)ff[i].pixel;
+            own[half][p] = own[half][p + 1] = own[half][p + 2] = 0.0f; /* var's there */
+        }
+    }
+}
+
 /* The MSE of D = (fa + fb)/2 per pixel and channel (nfor.h, step 4). fa is A regressed with B's
  * guides, fa = L_a·A with L_a fixed by B and the features, so that with A = μ + n (the noise n
  * independent of L_a, of variance Var(A) in each pixel, independent between pixels)
  *     E[(A − fa)²] = Var(A) − 2·L_a,ii·Var(A) + MSE(fa),
- * the middle term the covariance of A's noise with its own share of fa. Var(A) is estimated by
- * the pixel's (A − B)²/2 (var_half), unbiased; L_a,ii by la (regress). In the covariance term,
- * though, Var(A) must not come from B: where B has a firefly, B's patch matches nothing, A's
- * regression leans on the pixel itself (la near 1) and (A − B)²/2 is B's firefly, so that their
- * product counted B's firefly into A's error (cornell-spheres at 16 spp: 1.7 times the true
- * error over 10 seeds). There (A − fb)² stands for Var(A): fb, B regressed with A's guides, is
- * close to μ (E[(A − fb)²] = Var(A) + MSE(fb) − 2·Cov(A, fb), the last two a few percent of
- * Var(A)) and is no firefly where B has one. fb alike; then
+ * the middle term the covariance of A's noise with its own share of fa. In the first term Var(A)
+ * is estimated by the pixel's (A − B)²/2 (var_half), unbiased: a term as large as Var(A), where
+ * MSE(fa) is a few percent of it, wants no bias at all. L_a,ii is estimated by la (regress). In
+ * the covariance term Var(A) must not come from B, though: la comes from B's guides, and where B
+ * is far from μ its patch matches little, A's regression leans on the pixel itself and la is
+ * large, so that la and (A − B)²/2 grow together and their product's mean is more than the
+ * product of their means (cornell-spheres at 16 spp: 1.7 times the true error over 10 seeds).
+ * A's own variance va (own_variance) is independent of B. It replaces (A − fb)², fb being B
+ * regressed with A's guides, which did not grow with B's errors but did with A's: where A is far
+ * from μ, A's patch matches little and fb leans on B, so that (A − fb)² was (A − B)² there, and
+ * on the Cornell box at 160² and 16 spp, with the candidate of bandwidth 0.5 alone, the
+ * covariance term read 1.20 times its true value over 6 seeds, and the estimate of fa's error
+ * 1.66 times the truth (1.14 with va). fb alike; then
  *     MSE(D) = [MSE(fa) + MSE(fb)]/2 − (fa − fb)²/4,
  * exact from ((a + b)/2)² = (a² + b²)/2 − ((a − b)/2)². NFOR's own estimate, (B − fa)² − Var(B),
  * leaves out the covariance of B with fa, which B's guides make large: 0.13-0.15 of the true
- * error on the Cornell box at 16 and 64 spp (10 seeds); this one measured 0.78-1.09 there and
- * 1.04-1.12 on cornell-spheres (the error of the colour without the lights seen directly). One
- * image's estimate is noisy, though: each pixel's term is about the product of its halves'
- * noises, whose spread is Var(A) where the error is a few percent of it (README). */
+ * error on the Cornell box at 16 and 64 spp (10 seeds). One image's estimate is noisy, though:
+ * each pixel's term is about the product of its halves' noises, whose spread is Var(A) where the
+ * error is a few percent of it (README). */
 static void mse_estimate(const float *A, const float *B, const float *fa, const float *fb,
-                         const float *la, const float *lb, const float *var_half, size_t n3,
-                         float *out)
+                         const float *la, const float *lb, const float *var_half,
+                         const float *va, const float *vb, size_t n3, float *out)
 {
     size_t i;
     for (i = 0; i < n3; i++)
-        out[i] = 0.5f * (sq(A[i] - fa[i]) - var_half[i] + 2.0f * sq(A[i] - fb[i]) * la[i]
-                         + sq(B[i] - fb[i]) - var_half[i] + 2.0f * sq(B[i] - fa[i]) * lb[i])
+        out[i] = 0.5f * (sq(A[i] - fa[i]) - var_half[i] + 2.0f * va[i] * la[i]
+                         + sq(B[i] - fb[i]) - var_half[i] + 2.0f * vb[i] * lb[i])
                  - 0.25f * sq(fa[i] - fb[i]);
 }
 
@@ -1013,16 +1084,18 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
     /* One block of floats: 3-channel images, then feature planes. */
     enum {
         VAR, VARS, VARG, MEAN,
+        OWN,                     /* 2: each half's own variance, calibrated (own_variance) */
+        VG = OWN + 2,            /* 2: each half's, averaged for the weights */
         CAND,                    /* A's first candidate, B's, A's second, B's */
         ERR = CAND + 4,          /* 4 images: the error maps' differences, then the results */
         SMOOTH = ERR + 4,        /* 2: the differences smoothed */
         SEL = SMOOTH + 2,        /* 2: the choices, 6 channels */
         LEV = SEL + 2,           /* 2: the four candidates' leverage planes */
-        TMP = LEV + 2, CA, CB, EM, EMV, NIMG
+        TMP = LEV + 2, TMP2, CA, CB, EM, EMV, NIMG
     };
-    /* Then the padded guides (pad_copy), 3 channels each: the halves, the variance of a half and
-     * of the mean, the mean. */
-    enum { PA, PB, PVAR, PVARM, PMEAN, NPAD };
+    /* Then the padded guides (pad_copy), 3 channels each: the halves, each half's variance, the
+     * variance of the mean, the mean. */
+    enum { PA, PB, PVARA, PVARB, PVARM, PMEAN, NPAD };
     size_t np3 = (size_t)(w + 2 * PAD) * (size_t)(h + 2 * PAD) * 3;
     size_t np1 = np3 / 3;
     float *buf = mc_malloc((n3 * NIMG + n * (size_t)(2 * nf + 2) + np3 * NPAD
@@ -1098,6 +1171,17 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
         size_t p = 3 * (size_t)ff[i].pixel;
         img[VAR][p] = img[VAR][p + 1] = img[VAR][p + 2] = 0.0f;
     }
+    own_variance(in, img[VAR], ff, nff, img + CAND, img[TMP], img + OWN);
+    /* The weights' variance of each half: its own over the REG_VAR_R box, a firefly's the
+     * window's, as above. */
+    for (half = 0; half < 2; half++) {
+        memcpy(img[TMP2], img[OWN + half], n3 * sizeof *img[TMP2]);
+        for (i = 0; i < (size_t)nff; i++) {
+            size_t p = 3 * (size_t)ff[i].pixel;
+            img[TMP2][p] = img[TMP2][p + 1] = img[TMP2][p + 2] = ff[i].var;
+        }
+        box_mean(img[TMP2], 3, w, h, REG_VAR_R, img[TMP], img[VG + half]);
+    }
     pad_copy(A, 3, 1, w, h, 1.0f, pad[PA]);
     pad_copy(B, 3, 1, w, h, 1.0f, pad[PB]);
 
@@ -1145,13 +1229,14 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
 
     /* 2. Each half regressed on the other half's features with the other half's weights, for
      * two bandwidths, with the leverages of the results (regress); 3. the choice between them. */
-    pad_copy(img[VARG], 3, 1, w, h, 1.0f, pad[PVAR]);
+    pad_copy(img[VG], 3, 1, w, h, 1.0f, pad[PVARA]);
+    pad_copy(img[VG + 1], 3, 1, w, h, 1.0f, pad[PVARB]);
     pad_copy(img[VARS], 3, 1, w, h, 0.5f, pad[PVARM]);
     pad_copy(img[MEAN], 3, 1, w, h, 1.0f, pad[PMEAN]);
     g.gc = 3;
     g.f = REG_F;
     g.k = 1.0f; /* the distances, to which each bandwidth applies (regress) */
-    g.var = pad[PVAR];
+    g.var = pad[PVARB];
     g.img = pad[PB];
     {
         float *const ca[2] = {img[CAND], img[CAND + 2]}, *const cb[2] = {img[CAND + 1],
@@ -1160,6 +1245,7 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
                                                                        img[LEV] + 3 * n};
         st = regress(&pl, &g, A, cpre[1], nf, ca, la, d);
         g.img = pad[PA];
+        g.var = pad[PVARA];
         if (st == MCRT_OK)
             st = regress(&pl, &g, B, cpre[0], nf, cb, lb, d);
     }
@@ -1209,7 +1295,7 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
         }
         /* 4. */
         if (mse)
-            mse_estimate(A, B, fa, fb, la, lb, img[VAR], n3, mse);
+            mse_estimate(A, B, fa, fb, la, lb, img[VAR], img[OWN], img[OWN + 1], n3, mse);
         for (i = 0; mse && mse_var && i < n3; i++)
             mse_var[i] = sq(img[VAR][i]) / 3.0f;
         /* The fireflies' excesses back (firefly.h), by the standard error of the mean, from a
@@ -1252,16 +1338,17 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
          * f² − V < V (the noise's standard deviation over 1/√2 of the value) the pixel's emission
          * is taken as its 3×3 mean, a ninth as noisy: dof 0.70 of the truth, 0.20 before. */
         if (mse && mean_sq) {
-            float *em_box = img[TMP], *tmp = img[ERR];
+            float *em_box = img[TMP], *rgb_box = img[TMP2], *tmp = img[ERR];
             if (E[0])
                 box_mean(img[EM], 3, w, h, 1, tmp, em_box);
+            box_mean(rgb, 3, w, h, MEAN_SQ_R, tmp, rgb_box);
             for (i = 0; i < n3; i++) {
                 float v = E[0] ? img[EMV][i] : 0.0f, q = rgb[i] * rgb[i] - v;
                 if (E[0] && q < v) {
                     float m = rgb[i] - img[EM][i] + em_box[i];
                     q = m > 0.0f ? m * m : 0.0f;
                 }
-                mean_sq[i] = q;
+                mean_sq[i] = q < rgb_box[i] * rgb_box[i] ? q : rgb_box[i] * rgb_box[i];
             }
         }
     }

@@ -11,7 +11,9 @@
  *      filters A stays independent of A;
  *   2. each half's colour is regressed, in a window around a pixel, as an affine function of
  *      the other half's prefiltered features and of screen position, with NL-means weights from
- *      the other half's colour (first-order regression, §5.2), for two bandwidths k; each
+ *      the other half's colour and that half's variance from its own samples (first-order
+ *      regression, §5.2; the variance not from (A − B)², which would make A's weights depend
+ *      on A, and the error estimate below take them as fixed), for two bandwidths k; each
  *      local fit is evaluated over its whole window and the fits averaged by their weights
  *      (collaborative filtering, §5.2). NFOR fits at every pixel; here the pixels of a lattice
  *      of spacing 2, and then each pixel those fits cover too little (nfor.c, LATTICE);
@@ -24,7 +26,9 @@
  *      estimated by regressing a probe of random signs along with the colour, so that
  *          MSE(D) ≈ ½[(A − Â)² − Var(A)(1 − 2ℓ_A) + (B − B̂)² − Var(B)(1 − 2ℓ_B)] − ¼(Â − B̂)²
  *      for the mean D = (Â + B̂)/2, the last term exact from ((a + b)/2)² = (a² + b²)/2 −
- *      ((a − b)/2)² and Var(A) the pixel's (A − B)²/2; summed over an image, the denoised
+ *      ((a − b)/2)², Var(A) the pixel's (A − B)²/2, and in the term with ℓ_A A's own
+ *      variance, which unlike (A − B)² does not grow with B's error where ℓ_A does (nfor.c,
+ *      mse_estimate); summed over an image, the denoised
  *      image's error without a reference. NFOR's own form, (B − Â)² − Var(B), leaves out the
  *      covariance of B and Â that B's guides create, and read 0.13-0.15 of the true error on the
  *      Cornell box (nfor.c, mse_estimate).
@@ -54,6 +58,9 @@ enum { MC_NFOR_MAX_FEATURES = 16 };
 struct nfor_input {
     int width, height;
     const float *color[2];   /* half A and half B: W·H·3 floats each, linear RGB */
+    const float *color_var[2]; /* per half, W·H·3 floats: the variance of its mean from its own
+                                  samples (film.h, mc_film_half_variance), biased or not by the
+                                  sampler: it is calibrated against (A − B)²/2 locally */
     int nfeatures;           /* 0 to MC_NFOR_MAX_FEATURES */
     const float *feature[2][MC_NFOR_MAX_FEATURES]; /* per half, planes of W·H floats */
     const float *emission[2]; /* per half, W·H·3 floats, part of color; NULL: none */
@@ -76,7 +83,8 @@ struct nfor_input {
  * μ², which a relative error divides by: rgb² less the variance of the emission added back
  * unfiltered, or, where that emission is mostly noise, rgb² with the emission's 3×3 mean in
  * place of its own (where a small lamp out of focus is seen by one sample of 16, rgb² is
- * hundreds of times μ² and hides the pixel's error; nfor.c). Returns MCRT_OK, or
+ * hundreds of times μ² and hides the pixel's error; nfor.c), and no more than the square of
+ * rgb's 5×5 mean (a bright spot left by the noise hides its error alike). Returns MCRT_OK, or
  * MCRT_ERR_NOMEM. */
 mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb, float *mse,
                             float *mse_var, float *mean_sq, mc_diag *d);

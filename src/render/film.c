@@ -145,6 +145,18 @@ void mc_film_variance(const struct film *f, float *var)
     }
 }
 
+void mc_film_half_variance(const struct film *f, int h, float *var)
+{
+    size_t i, n = (size_t)f->width * (size_t)f->height;
+    int c;
+    for (i = 0; i < n; i++) {
+        const struct film_sums *s = &f->pixels[i].half[h];
+        double k = (double)s->count;
+        for (c = 0; c < 3; c++)
+            var[3 * i + c] = s->count < 2 ? 0.0f : (float)(s->m2[c] / (k * (k - 1.0)));
+    }
+}
+
 double mc_film_est_relmse(const struct film *f)
 {
     size_t i, used = 0, n = (size_t)f->width * (size_t)f->height;

@@ -120,6 +120,11 @@ void mc_film_resolve_half(const struct film *f, int h, float *rgb);
 /* The estimated variance of each pixel mean (mc_film_pixel_variance), per channel as W·H·3
  * floats, 0 where a pixel has no estimate. */
 void mc_film_variance(const struct film *f, float *var);
+/* The variance of half h's mean from that half's own samples, s²/n (s² = M2/(n − 1)), per channel
+ * as W·H·3 floats, 0 where the half has fewer than 2 samples. Unbiased for independent samples
+ * and biased up for stratified and Sobol ones (film.h above), but of n − 1 degrees of freedom
+ * and, unlike (A − B)²/2, a function of that half alone. */
+void mc_film_half_variance(const struct film *f, int h, float *var);
 
 /* The ε of the relative MSE, (x − ref)²/(ref² + ε): a floor for black pixels. */
 #define MC_RELMSE_EPS 0.01

@@ -43,7 +43,7 @@ CACHE=${CACHE:-/tmp/mcrt-denoise-bench}
 mkdir -p "$CACHE" || exit 2
 tmp=$(mktemp -d) || exit 2
 trap 'rm -rf "$tmp"' EXIT
-key=$(cat src/render/aov.c src/render/aov.h | cksum | cut -d' ' -f1)
+key=$(cat src/render/aov.c src/render/aov.h src/api/denoise.h | cksum | cut -d' ' -f1)
 stat() { sed -n "s/^ *\"$2\": \\([^,]*\\),*\$/\\1/p" "$1"; }
 # diffstat IMAGE REF: the relMSE and the bias of IMAGE against REF.
 diffstat() {

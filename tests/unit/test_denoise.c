@@ -28,6 +28,7 @@ enum { W = 64, H = 48, N = W * H };
 struct bufs {
     float truth[N * 3], half[2][N * 3], feat[2][2][N]; /* two feature planes per half */
     float rgb[N * 3], mse[N * 3];
+    float var[N * 3]; /* each half's variance, SIGMA², as a film of independent samples gives it */
 };
 
 static double gauss(pcg32 *g)
@@ -56,14 +57,17 @@ static mcrt_status run(struct bufs *b, int threads)
 {
     struct nfor_input in;
     mc_diag d;
-    int h;
+    int h, i;
     in.width = W;
     in.height = H;
     in.nfeatures = 2;
     in.emission[0] = in.emission[1] = NULL;
     in.depth[0] = in.depth[1] = NULL;
+    for (i = 0; i < N * 3; i++)
+        b->var[i] = (float)(SIGMA * SIGMA);
     for (h = 0; h < 2; h++) {
         in.color[h] = b->half[h];
+        in.color_var[h] = b->var;
         in.feature[h][0] = b->feat[h][0];
         in.feature[h][1] = b->feat[h][1];
     }
@@ -176,7 +180,7 @@ static void not_finite_input(void)
 {
     static const char *const names[] = {"A", "B", "albedo.A", "albedo.B", "normal.A", "normal.B",
                                         "depth.A", "depth.B", "emission.A", "emission.B",
-                                        "emission.var"};
+                                        "variance.A", "variance.B", "emission.var"};
     enum { LW = 8, LH = 6, NL = sizeof names / sizeof names[0] };
     static float planes[NL][LW * LH * 3];
     struct image_layer layers[NL];
