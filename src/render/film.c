@@ -150,10 +150,14 @@ void mc_film_half_variance(const struct film *f, int h, float *var)
     size_t i, n = (size_t)f->width * (size_t)f->height;
     int c;
     for (i = 0; i < n; i++) {
-        const struct film_sums *s = &f->pixels[i].half[h];
-        double k = (double)s->count;
-        for (c = 0; c < 3; c++)
-            var[3 * i + c] = s->count < 2 ? 0.0f : (float)(s->m2[c] / (k * (k - 1.0)));
+        const struct film_sums *s = &f->pixels[i].half[h], *o = &f->pixels[i].half[!h];
+        double k = (double)s->count, ko = (double)o->count;
+        for (c = 0; c < 3; c++) {
+            double d = s->mean[c] - o->mean[c];
+            /* E[(A − B)²] = σ²/k + σ²/ko, so σ²/k is estimated by (A − B)²·ko/(k + ko). */
+            var[3 * i + c] = s->count >= 2 ? (float)(s->m2[c] / (k * (k - 1.0)))
+                             : s->count && o->count ? (float)(d * d * ko / (k + ko)) : 0.0f;
+        }
     }
 }
 

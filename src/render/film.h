@@ -121,9 +121,11 @@ void mc_film_resolve_half(const struct film *f, int h, float *rgb);
  * floats, 0 where a pixel has no estimate. */
 void mc_film_variance(const struct film *f, float *var);
 /* The variance of half h's mean from that half's own samples, s²/n (s² = M2/(n − 1)), per channel
- * as W·H·3 floats, 0 where the half has fewer than 2 samples. Unbiased for independent samples
- * and biased up for stratified and Sobol ones (film.h above), but of n − 1 degrees of freedom
- * and, unlike (A − B)²/2, a function of that half alone. */
+ * as W·H·3 floats. Unbiased for independent samples and biased up for stratified and Sobol ones
+ * (film.h above), but of n − 1 degrees of freedom and, unlike (A − B)²/2, a function of that half
+ * alone. A half of one sample has no s²; its variance is then taken from the halves' difference,
+ * (A − B)²·n_other/(n_h + n_other), as the halves of a pixel are independent (0 where either
+ * half is empty). */
 void mc_film_half_variance(const struct film *f, int h, float *var);
 
 /* The ε of the relative MSE, (x − ref)²/(ref² + ε): a floor for black pixels. */

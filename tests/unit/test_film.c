@@ -1,7 +1,7 @@
 /* test_film.c: the film's error estimates (src/render/film.c): the variance of a pixel mean from
- * the halves (A − B)²·nA·nB/n² and from the pooled sample variance, by hand; and the estimated
- * relative MSE of Gaussian samples (with its denominator A·B) against its expectation, both
- * ways. */
+ * the halves (A − B)²·nA·nB/n² and from the pooled sample variance, and each half's own, by
+ * hand; and the estimated relative MSE of Gaussian samples (with its denominator A·B) against
+ * its expectation, both ways. */
 #include <math.h>
 #include <stdlib.h>
 
@@ -45,6 +45,15 @@ static void test_variance(void)
     T_CHECK(var[3] == 0.0f, "one sample: 0");
     T_NEAR(mc_film_est_relmse(&f), (14.0 / 12.0 / 6.76 + 5.0 / 12.0 / 1.26) / 3.0, 1e-9,
            "est relmse, pooled");
+    /* Each half's own s²/n: R 1, 2 -> 0.5/2 and 3, 6 -> 4.5/2; B 0, 1 and 2, 3 -> 0.5/2 each;
+     * pixel 1's other half is empty: 0. */
+    mc_film_half_variance(&f, 0, var);
+    T_NEAR(var[0], 0.25, 1e-6, "half A's own variance, R");
+    T_CHECK(var[1] == 0.0f, "half A's own variance, constant G: %g", var[1]);
+    T_NEAR(var[2], 0.25, 1e-6, "half A's own variance, B");
+    T_CHECK(var[3] == 0.0f, "half A's own variance, the other half empty: %g", var[3]);
+    mc_film_half_variance(&f, 1, var);
+    T_NEAR(var[0], 2.25, 1e-6, "half B's own variance, R");
     /* Unequal halves, 1 | 2, 3: (A − B)²·nA·nB/n² = (1 − 2.5)²·2/9 = 0.5. */
     mc_film_clear(&f);
     f.pooled = 0;
@@ -53,6 +62,11 @@ static void test_variance(void)
     mc_film_add(&f.pixels[0].half[1], v3s(3.0f));
     T_CHECK(mc_film_pixel_variance(&f, &f.pixels[0], v) && fabs(v[0] - 0.5) < 1e-12,
             "unequal halves: %g", v[0]);
+    /* A half of one sample has no s²: (A − B)²·n_B/n = (1 − 2.5)²·2/3 = 1.5; B's own 0.5/2. */
+    mc_film_half_variance(&f, 0, var);
+    T_NEAR(var[0], 1.5, 1e-6, "a half of one sample: from the halves' difference");
+    mc_film_half_variance(&f, 1, var);
+    T_NEAR(var[0], 0.25, 1e-6, "the other half's own");
     mc_film_free(&f);
     T_CHECK(mc_film_init(&f, 1, 1) == 0 && isnan(mc_film_est_relmse(&f)), "no samples: NaN");
     mc_film_free(&f);
