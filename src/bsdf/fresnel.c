@@ -11,7 +11,7 @@ float mc_fresnel_dielectric(float cos_i, float eta)
     float k, s, r_par, r_perp;
     if (eta == 1.0f)
         return 0.0f; /* no interface; also the one case where both denominators below vanish */
-    cos_i = fminf(fmaxf(cos_i, -1.0f), 1.0f);
+    cos_i = f_min(1.0f, f_max(-1.0f, cos_i));
     if (cos_i < 0.0f) {
         /* Incidence from inside: swap the media (pbrt-v4 eq. 9.6 with η → 1/η). */
         eta = 1.0f / eta;
@@ -70,7 +70,7 @@ vec3 mc_fresnel_conductor(float cos_i, vec3 eta, vec3 k)
  * k = ∞: 0.9999 gives k = 200. */
 static float k_from_reflectance(float r)
 {
-    r = fminf(fmaxf(r, 0.0f), 0.9999f);
+    r = f_min(0.9999f, f_max(0.0f, r));
     return 2.0f * sqrtf(r / (1.0f - r));
 }
 

@@ -63,12 +63,12 @@ vec3 mc_ggx_sample_visible(float alpha, vec3 wo, vec2 u)
     t1 = len2 > 0.0f ? v3_scale(v3(-vh.y, vh.x, 0.0f), 1.0f / sqrtf(len2)) : v3(1.0f, 0.0f, 0.0f);
     t2 = v3_cross(vh, t1);
     s = 0.5f * (1.0f + vh.z);
-    p.y = (1.0f - s) * sqrtf(fmaxf(0.0f, 1.0f - p.x * p.x)) + s * p.y;
-    pz = sqrtf(fmaxf(0.0f, 1.0f - p.x * p.x - p.y * p.y));
+    p.y = (1.0f - s) * sqrtf(f_max(0.0f, 1.0f - p.x * p.x)) + s * p.y;
+    pz = sqrtf(f_max(0.0f, 1.0f - p.x * p.x - p.y * p.y));
     nh = v3_add(v3_add(v3_scale(t1, p.x), v3_scale(t2, p.y)), v3_scale(vh, pz));
     /* Unstretch. The floor on z (pbrt-v4's) keeps a rim sample off the horizon, where it
      * would be a normal of zero density. */
-    return v3_normalize(v3(alpha * nh.x, alpha * nh.y, fmaxf(1e-6f, nh.z)));
+    return v3_normalize(v3(alpha * nh.x, alpha * nh.y, f_max(1e-6f, nh.z)));
 }
 
 float mc_ggx_half(vec3 wo, vec3 wi, vec3 *wm)

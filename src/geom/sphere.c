@@ -33,8 +33,9 @@ int mc_sphere_intersect(const struct prim *p, const struct ray_prep *q, struct h
         return 0;
     t0 = c / qq;
     t1 = qq / a;
-    tn = (float)fmin(t0, t1);
-    tf = (float)fmax(t0, t1);
+    /* t0 and t1 are finite (qq and a are not 0): a comparison, where libm's fmin is a call. */
+    tn = (float)(t0 < t1 ? t0 : t1);
+    tf = (float)(t0 < t1 ? t1 : t0);
     if (mc_shape_accept(tn, h))
         h->t = tn;
     else if (mc_shape_accept(tf, h))

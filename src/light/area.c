@@ -52,13 +52,13 @@ static int sample_sphere_cone(const struct prim *pr, vec3 p, vec2 u, struct ligh
     vec3 c = pr->p[0], to_c = v3_sub(c, p);
     float r = pr->p[1].x, d2 = v3_length2(to_c), d = sqrtf(d2);
     float sin2_max = r * r / d2, sin_max = sqrtf(sin2_max);
-    float cos_max = sqrtf(fmaxf(0.0f, 1.0f - sin2_max));
+    float cos_max = sqrtf(f_max(0.0f, 1.0f - sin2_max));
     float omc = sin2_max / (1.0f + cos_max);            /* 1 − cos θmax */
     float one_minus_cos = u.x * omc;                    /* 1 − cos θ */
     float cos_t = 1.0f - one_minus_cos;
     float sin2_t = one_minus_cos * (2.0f - one_minus_cos);
-    float cos_a = sin2_t / sin_max + cos_t * sqrtf(fmaxf(0.0f, 1.0f - sin2_t / sin2_max));
-    float sin_a = sqrtf(fmaxf(0.0f, 1.0f - cos_a * cos_a));
+    float cos_a = sin2_t / sin_max + cos_t * sqrtf(f_max(0.0f, 1.0f - sin2_t / sin2_max));
+    float sin_a = sqrtf(f_max(0.0f, 1.0f - cos_a * cos_a));
     float phi = 2.0f * MC_PI * u.y;
     frame f = frame_from_normal(v3_scale(to_c, 1.0f / d));
     vec3 n = frame_to_world(&f, v3(-sin_a * cosf(phi), -sin_a * sinf(phi), -cos_a));
@@ -156,7 +156,7 @@ float mc_area_light_pdf(const struct light_scene *s, const struct light *l, vec3
         p = rigid_inv_point(&x, p);
     if (pr->kind == PRIM_SPHERE && sphere_cone_applies(pr, p)) {
         float sin2_max = pr->p[1].x * pr->p[1].x / v3_length2(v3_sub(p, pr->p[0]));
-        float cos_max = sqrtf(fmaxf(0.0f, 1.0f - sin2_max));
+        float cos_max = sqrtf(f_max(0.0f, 1.0f - sin2_max));
         return (1.0f + cos_max) / (2.0f * MC_PI * sin2_max);
     }
     cos_l = fabsf(v3_dot(sf->ng, wi));

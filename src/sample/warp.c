@@ -44,7 +44,7 @@ vec3 mc_warp_cosine_hemisphere(vec2 u)
     /* Malley's method: a uniform disk point lifted to the hemisphere has density cosθ/π
      * (pbrt-v4 SampleCosineHemisphere). */
     vec2 d = mc_warp_concentric_disk(u);
-    float z = sqrtf(fmaxf(0.0f, 1.0f - d.x * d.x - d.y * d.y));
+    float z = sqrtf(f_max(0.0f, 1.0f - d.x * d.x - d.y * d.y));
     return v3(d.x, d.y, z);
 }
 
@@ -64,7 +64,7 @@ vec3 mc_warp_uniform_hemisphere(vec2 u)
 {
     /* Archimedes: z is uniform on [0, 1] for a uniform hemisphere (pbrt-v4 SampleUniformHemisphere). */
     float z = u.x;
-    return spherical(sqrtf(fmaxf(0.0f, 1.0f - z * z)), z, u.y);
+    return spherical(sqrtf(f_max(0.0f, 1.0f - z * z)), z, u.y);
 }
 
 float mc_warp_uniform_hemisphere_pdf(void) { return 0.5f * MC_INV_PI; }
@@ -72,7 +72,7 @@ float mc_warp_uniform_hemisphere_pdf(void) { return 0.5f * MC_INV_PI; }
 vec3 mc_warp_uniform_sphere(vec2 u)
 {
     float z = 1.0f - 2.0f * u.x;
-    return spherical(sqrtf(fmaxf(0.0f, 1.0f - z * z)), z, u.y);
+    return spherical(sqrtf(f_max(0.0f, 1.0f - z * z)), z, u.y);
 }
 
 float mc_warp_uniform_sphere_pdf(void) { return 0.25f * MC_INV_PI; }
@@ -92,7 +92,7 @@ vec3 mc_warp_uniform_cone(vec2 u, float cos_max, float sin2_max)
      * cancellation of 1 − cos²θ; pbrt-v4 SampleSphere resorts to a Taylor expansion for the
      * same reason. cos²θ + sin²θ = (1 − t)² + t(2 − t) = 1 exactly, so the result is unit. */
     float t = u.x * one_minus_cos_max(cos_max, sin2_max);
-    return spherical(sqrtf(fmaxf(0.0f, t * (2.0f - t))), 1.0f - t, u.y);
+    return spherical(sqrtf(f_max(0.0f, t * (2.0f - t))), 1.0f - t, u.y);
 }
 
 float mc_warp_uniform_cone_pdf(float cos_max, float sin2_max)
