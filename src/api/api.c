@@ -476,7 +476,8 @@ double mcrt_seconds_to_relmse(const mcrt_stats *st, double relmse)
     return st->seconds * pow(relmse / st->est_relmse, 1.0 / st->relmse_slope);
 }
 
-/* The aov.h layer of each of the denoiser's (api/denoise.h). */
+/* The aov.h layer of each of the denoiser's first-surface layers (api/denoise.h): all but the last,
+ * DENOISE_VARIANCE, which the film gives (mc_film_half_variance). */
 static const enum aov_kind denoise_aov[DENOISE_VARIANCE] = {AOV_ALBEDO, AOV_NORMAL, AOV_DEPTH,
                                                             AOV_EMISSION};
 #define DENOISE_IMAGES (3 + 2 * DENOISE_LAYERS)

@@ -36,20 +36,26 @@ static const int edge_radius[] = {6, 4, 2};
 enum { EDGE_RADII = sizeof edge_radius / sizeof edge_radius[0], EDGE_RMAX = 6 };
 enum { EDGE_WIN = (2 * EDGE_RMAX + 1) * (2 * EDGE_RMAX + 1) };
 
+/* The sum of pixel i's three channels of v (W·H·3 floats). */
+static double channel_sum(const float *v, size_t i)
+{
+    return (double)v[3 * i] + v[3 * i + 1] + v[3 * i + 2];
+}
+
 /* Whether pixel i is on a light's edge: its rays saw different emission, and one of its eight
  * neighbours saw none. */
 static int on_edge(const float *mean, const float *var, int w, int h, int x, int y)
 {
     size_t i = (size_t)y * (size_t)w + (size_t)x;
     int dx, dy;
-    if (var[3 * i] + var[3 * i + 1] + var[3 * i + 2] <= 0.0f)
+    if (channel_sum(var, i) <= 0.0)
         return 0;
     for (dy = -1; dy <= 1; dy++)
         for (dx = -1; dx <= 1; dx++) {
             int xq = x + dx, yq = y + dy;
             size_t q = (size_t)yq * (size_t)w + (size_t)xq;
             if ((dx || dy) && xq >= 0 && xq < w && yq >= 0 && yq < h
-                && mean[3 * q] + mean[3 * q + 1] + mean[3 * q + 2] <= 0.0f)
+                && channel_sum(mean, q) <= 0.0)
                 return 1;
         }
     return 0;
@@ -90,14 +96,14 @@ static double plane_fit(const int *dx, const int *dy, const float *e, int n, dou
     return rss / (double)(n - rank);
 }
 
-/* The straight edge that pixel (x, y) lies on, from its four neighbours' emission: 0 or 1 for an
+/* The straight edge that edge pixel (x, y) lies on, from its four neighbours' emission: 0 or 1 for an
  * edge down the film (lit on the left or the right), 2 or 3 for one across it (lit above or
  * below); EDGE_NONE where neither direction's difference is twice the other's, or where neither
  * neighbour along the edge is on an edge (edge): a corner, or a tip that a light's corner cuts
  * (the Cornell box's light at 16 spp, seed 7: a pixel lit over 3% beside a side lit over 12%, with
  * no edge pixel above or below it, was fitted along the slanted side below, 0.82 for a truth of
- * 0.35, where it had had 0.42). A
- * plane fits the shares along one straight edge only (light_edge.h), so a window's fit takes
+ * 0.35, where it had had 0.42). A plane fits the shares along one straight edge only
+ * (light_edge.h), so a window's fit takes
  * the pixels of the centre's edge alone. With every edge pixel of the window, the chi-square
  * test, which at a few samples a pixel has little power, let planes through that mixed two edges
  * of a light's corner (the Cornell box at 160², 10 spp: a column of shares 0.4, 0.3, 0.1 down
@@ -111,18 +117,14 @@ enum { EDGE_NONE = 4 };
 static unsigned char edge_group(const float *mean, const unsigned char *edge, int w, int h, int x,
                                 int y)
 {
-    size_t i = (size_t)y * (size_t)w + (size_t)x;
-    double l = x > 0 ? (double)mean[3 * (i - 1)] + mean[3 * (i - 1) + 1] + mean[3 * (i - 1) + 2] : 0.0;
-    double r = x + 1 < w ? (double)mean[3 * (i + 1)] + mean[3 * (i + 1) + 1] + mean[3 * (i + 1) + 2]
-                         : 0.0;
-    double u = y > 0 ? (double)mean[3 * (i - (size_t)w)] + mean[3 * (i - (size_t)w) + 1]
-                           + mean[3 * (i - (size_t)w) + 2]
-                     : 0.0;
-    double d = y + 1 < h ? (double)mean[3 * (i + (size_t)w)] + mean[3 * (i + (size_t)w) + 1]
-                               + mean[3 * (i + (size_t)w) + 2]
-                         : 0.0;
+    size_t i = (size_t)y * (size_t)w + (size_t)x, row = (size_t)w;
+    double l = x > 0 ? channel_sum(mean, i - 1) : 0.0, r = x + 1 < w ? channel_sum(mean, i + 1) : 0.0;
+    double u = y > 0 ? channel_sum(mean, i - row) : 0.0;
+    double d = y + 1 < h ? channel_sum(mean, i + row) : 0.0;
     double gx = r - l, gy = d - u;
-    if (fabs(gx) >= 2.0 * fabs(gy) && ((y > 0 && edge[i - (size_t)w]) || (y + 1 < h && edge[i + (size_t)w])))
+    if (!edge[i])
+        return EDGE_NONE;
+    if (fabs(gx) >= 2.0 * fabs(gy) && ((y > 0 && edge[i - row]) || (y + 1 < h && edge[i + row])))
         return (unsigned char)(gx > 0.0);
     if (fabs(gy) >= 2.0 * fabs(gx) && ((x > 0 && edge[i - 1]) || (x + 1 < w && edge[i + 1])))
         return (unsigned char)(2 + (gy > 0.0));
@@ -196,8 +198,7 @@ enum { UNSEEN_RUN = 2 };
 /* Whether pixel i has no emission and no variance: no ray of either half saw a light there. */
 static int dark(const float *mean, const float *var, size_t i)
 {
-    return mean[3 * i] + mean[3 * i + 1] + mean[3 * i + 2] <= 0.0f
-           && var[3 * i] + var[3 * i + 1] + var[3 * i + 2] <= 0.0f;
+    return channel_sum(mean, i) <= 0.0 && channel_sum(var, i) <= 0.0;
 }
 
 /* The first pixel that is not dark from (x, y) on in steps of (sx, sy), at most UNSEEN_RUN steps

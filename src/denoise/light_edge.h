@@ -10,8 +10,9 @@
  * along a slanted one). So each such pixel's emission is fitted, channel by channel, as
  * a + b·dx + c·dy by least squares over the edge pixels of a window around it that lie on the
  * same edge (down or across the film, lit on the same side, as their neighbours say), all
- * weighing the same (light_edge.c says why), and the fit's a replaces the pixel's value when it agrees with
- * every pixel of the window within their noise: a reduced chi-square below EDGE_CHI2. Windows
+ * weighing the same (light_edge.c says why), and the fit's a replaces the pixel's value when it
+ * agrees with every pixel of the window within their noise: a reduced chi-square below
+ * EDGE_CHI2. Windows
  * of radius 6, 4 and 2 are tried in turn, the first accepted kept: a long edge averages many
  * pixels. A corner, where no plane fits, and the dark pixels beside an edge, are given the share
  * of the pixel inside the light's edges taken as straight lines through the edge pixels' shares

@@ -997,6 +997,16 @@ static void box_mean(const float *v, int nc, int width, int height, int r, float
     }
 }
 
+/* Each firefly pixel's three channels of img set to its window's variance (with_var) or to 0. */
+static void set_fireflies(float *img, const struct firefly *ff, int nff, int with_var)
+{
+    int i;
+    for (i = 0; i < nff; i++) {
+        size_t p = 3 * (size_t)ff[i].pixel;
+        img[p] = img[p + 1] = img[p + 2] = with_var ? ff[i].var : 0.0f;
+    }
+}
+
 /* Whether pixel i's halves' own variances are those of the colour filtered: not where either
  * half has emission, which is taken out of the colour (nfor.h) but not out of those variances. */
 static int own_pixel(const struct nfor_input *in, size_t i)
@@ -1016,28 +1026,29 @@ static void own_variance(const struct nfor_input *in, const float *var, const st
                          int nff, float *const scratch[4], float *tmp, float *const own[2])
 {
     float *num = scratch[0], *den = scratch[1], *snum = scratch[2], *sden = scratch[3];
-    int w = in->width, h = in->height, half;
-    size_t n3 = (size_t)w * (size_t)h * 3, i;
-    for (i = 0; i < n3; i++) {
-        int o = own_pixel(in, i / 3);
-        num[i] = o ? var[i] : 0.0f;
-        den[i] = o ? 0.5f * (in->color_var[0][i] + in->color_var[1][i]) : 0.0f;
-    }
-    for (i = 0; i < (size_t)nff; i++) {
-        size_t p = 3 * (size_t)ff[i].pixel;
-        num[p] = num[p + 1] = num[p + 2] = den[p] = den[p + 1] = den[p + 2] = 0.0f;
-    }
-    box_mean(num, 3, w, h, OWN_R, tmp, snum);
-    box_mean(den, 3, w, h, OWN_R, tmp, sden);
-    for (half = 0; half < 2; half++) {
-        for (i = 0; i < n3; i++)
-            own[half][i] = !own_pixel(in, i / 3) ? var[i]
-                           : (sden[i] > 0.0f ? snum[i] / sden[i] : 1.0f) * in->color_var[half][i];
-        for (i = 0; i < (size_t)nff; i++) {
-            size_t p = 3 * (size_t)ff[i].pixel;
-            own[half][p] = own[half][p + 1] = own[half][p + 2] = 0.0f; /* var's there */
+    int w = in->width, h = in->height, half, c;
+    size_t n = (size_t)w * (size_t)h, i, k;
+    for (i = 0; i < n; i++) {
+        int o = own_pixel(in, i);
+        for (c = 0, k = 3 * i; c < 3; c++, k++) {
+            num[k] = o ? var[k] : 0.0f;
+            den[k] = o ? 0.5f * (in->color_var[0][k] + in->color_var[1][k]) : 0.0f;
         }
     }
+    set_fireflies(num, ff, nff, 0);
+    set_fireflies(den, ff, nff, 0);
+    box_mean(num, 3, w, h, OWN_R, tmp, snum);
+    box_mean(den, 3, w, h, OWN_R, tmp, sden);
+    for (i = 0; i < n; i++) {
+        int o = own_pixel(in, i);
+        for (half = 0; half < 2; half++)
+            for (c = 0, k = 3 * i; c < 3; c++, k++)
+                own[half][k] = !o ? var[k]
+                               : (sden[k] > 0.0f ? snum[k] / sden[k] : 1.0f)
+                                     * in->color_var[half][k];
+    }
+    set_fireflies(own[0], ff, nff, 0); /* var's there */
+    set_fireflies(own[1], ff, nff, 0);
 }
 
 /* The MSE of D = (fa + fb)/2 per pixel and channel (nfor.h, step 4). fa is A regressed with B's
@@ -1161,25 +1172,16 @@ mcrt_status mc_nfor_denoise(const struct nfor_input *in, int threads, float *rgb
      * weights around a caustic's fireflies grew sharper and filtered less (cornell-spheres at 16
      * spp, make bench-denoise, fireflies found at a level of 4: 1.17e-2 against 1.09e-2). The error
      * estimate keeps the pixel's own (A − B)²/2, 0. */
-    for (i = 0; i < (size_t)nff; i++) {
-        size_t p = 3 * (size_t)ff[i].pixel;
-        img[VAR][p] = img[VAR][p + 1] = img[VAR][p + 2] = ff[i].var;
-    }
+    set_fireflies(img[VAR], ff, nff, 1);
     box_mean(img[VAR], 3, w, h, 1, img[TMP], img[VARS]);
     box_mean(img[VAR], 3, w, h, REG_VAR_R, img[TMP], img[VARG]);
-    for (i = 0; i < (size_t)nff; i++) {
-        size_t p = 3 * (size_t)ff[i].pixel;
-        img[VAR][p] = img[VAR][p + 1] = img[VAR][p + 2] = 0.0f;
-    }
+    set_fireflies(img[VAR], ff, nff, 0);
     own_variance(in, img[VAR], ff, nff, img + CAND, img[TMP], img + OWN);
     /* The weights' variance of each half: its own over the REG_VAR_R box, a firefly's the
      * window's, as above. */
     for (half = 0; half < 2; half++) {
         memcpy(img[TMP2], img[OWN + half], n3 * sizeof *img[TMP2]);
-        for (i = 0; i < (size_t)nff; i++) {
-            size_t p = 3 * (size_t)ff[i].pixel;
-            img[TMP2][p] = img[TMP2][p + 1] = img[TMP2][p + 2] = ff[i].var;
-        }
+        set_fireflies(img[TMP2], ff, nff, 1);
         box_mean(img[TMP2], 3, w, h, REG_VAR_R, img[TMP], img[VG + half]);
     }
     pad_copy(A, 3, 1, w, h, 1.0f, pad[PA]);
