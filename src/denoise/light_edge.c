@@ -96,14 +96,14 @@ static double plane_fit(const int *dx, const int *dy, const float *e, int n, dou
     return rss / (double)(n - rank);
 }
 
-/* The straight edge that edge pixel (x, y) lies on, from its four neighbours' emission: 0 or 1 for an
- * edge down the film (lit on the left or the right), 2 or 3 for one across it (lit above or
+/* The straight edge that edge pixel (x, y) lies on, from its four neighbours' emission: 0 or 1
+ * for an edge down the film (lit on the left or the right), 2 or 3 for one across it (lit above or
  * below); EDGE_NONE where neither direction's difference is twice the other's, or where neither
  * neighbour along the edge is on an edge (edge): a corner, or a tip that a light's corner cuts
  * (the Cornell box's light at 16 spp, seed 7: a pixel lit over 3% beside a side lit over 12%, with
  * no edge pixel above or below it, was fitted along the slanted side below, 0.82 for a truth of
- * 0.35, where it had had 0.42). A plane fits the shares along one straight edge only
- * (light_edge.h), so a window's fit takes
+ * 0.35, where it had had 0.42); EDGE_NONE too for a pixel on no edge, without looking further.
+ * A plane fits the shares along one straight edge only (light_edge.h), so a window's fit takes
  * the pixels of the centre's edge alone. With every edge pixel of the window, the chi-square
  * test, which at a few samples a pixel has little power, let planes through that mixed two edges
  * of a light's corner (the Cornell box at 160², 10 spp: a column of shares 0.4, 0.3, 0.1 down
@@ -118,12 +118,13 @@ static unsigned char edge_group(const float *mean, const unsigned char *edge, in
                                 int y)
 {
     size_t i = (size_t)y * (size_t)w + (size_t)x, row = (size_t)w;
-    double l = x > 0 ? channel_sum(mean, i - 1) : 0.0, r = x + 1 < w ? channel_sum(mean, i + 1) : 0.0;
-    double u = y > 0 ? channel_sum(mean, i - row) : 0.0;
-    double d = y + 1 < h ? channel_sum(mean, i + row) : 0.0;
-    double gx = r - l, gy = d - u;
+    double gx, gy;
     if (!edge[i])
         return EDGE_NONE;
+    gx = (x + 1 < w ? channel_sum(mean, i + 1) : 0.0)
+         - (x > 0 ? channel_sum(mean, i - 1) : 0.0);
+    gy = (y + 1 < h ? channel_sum(mean, i + row) : 0.0)
+         - (y > 0 ? channel_sum(mean, i - row) : 0.0);
     if (fabs(gx) >= 2.0 * fabs(gy) && ((y > 0 && edge[i - row]) || (y + 1 < h && edge[i + row])))
         return (unsigned char)(gx > 0.0);
     if (fabs(gy) >= 2.0 * fabs(gx) && ((x > 0 && edge[i - 1]) || (x + 1 < w && edge[i + 1])))
