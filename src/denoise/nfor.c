@@ -980,7 +980,7 @@ static mcrt_status regress(struct pool *pl, const struct guide g[2], const float
                 const double *s = sum + (size_t)k * (REG_C + 1) * n + i, wsum = s[REG_C * n];
                 for (c = 0; c < 3; c++)
                     out[h][k][i * 3 + (size_t)c] = (float)(s[(size_t)c * n] / wsum);
-                lev[h][k][i] = (float)(s[3 * n] / wsum) * probe(i, h, n);
+                lev[h][k][i] = (float)(s[3 * n] / wsum) * in[i * REG_C + 3]; /* the probe */
             }
     }
     free(j.acc);
