@@ -103,6 +103,22 @@ static double relmse(const struct bufs *b, int est)
     return s / (N * 3);
 }
 
+enum { STEP_SEEDS = 24 };
+
+/* The mean of the n values v, and its standard error (their sample standard deviation over √n)
+ * into *se. */
+static double mean_se(const double *v, int n, double *se)
+{
+    double m = 0.0, var = 0.0;
+    int i;
+    for (i = 0; i < n; i++)
+        m += v[i] / n;
+    for (i = 0; i < n; i++)
+        var += (v[i] - m) * (v[i] - m) / (n - 1);
+    *se = sqrt(var / n);
+    return m;
+}
+
 /* The error estimate (nfor.h, step 4) against the truth on the step f0 of main, the own
  * variances edge_scale times the truth on its edge (run_with). It is unbiased for this noise,
  * Gaussian and independent between pixels, but one image's estimate is noisy: each pixel's term
@@ -113,32 +129,28 @@ static double relmse(const struct bufs *b, int est)
  * mean estimate within the issue's factor 2 of the mean truth (NFOR's own estimate, which leaves
  * out the covariance of a half with the other's filtered result, measured 0.2 of the truth
  * here). */
-enum { STEP_SEEDS = 24 };
 static double step_estimate(struct bufs *b, const float *f0, double edge_scale,
                             double d[STEP_SEEDS])
 {
-    enum { SEEDS = STEP_SEEDS };
-    double dm = 0.0, dv = 0.0, em = 0.0, tm = 0.0;
+    double dm, se, em = 0.0, tm = 0.0;
     int s;
-    for (s = 0; s < SEEDS; s++) {
+    for (s = 0; s < STEP_SEEDS; s++) {
         double est, tru;
         make(b, f0, 0.0, 100 + (uint64_t)s);
         T_CHECK(run_with(b, 2, edge_scale) == MCRT_OK, "denoise");
         est = relmse(b, 1);
         tru = relmse(b, 0);
         d[s] = est - tru;
-        dm += d[s] / SEEDS;
-        em += est / SEEDS;
-        tm += tru / SEEDS;
+        em += est / STEP_SEEDS;
+        tm += tru / STEP_SEEDS;
     }
-    for (s = 0; s < SEEDS; s++)
-        dv += (d[s] - dm) * (d[s] - dm) / (SEEDS - 1);
+    dm = mean_se(d, STEP_SEEDS, &se);
     T_NOTE("step, own variances %g times the truth on the edge: relMSE raw %.4g, denoised true "
            "%.4g, estimated %.4g (means of %d seeds; est - true %.3g, standard error %.3g)",
            edge_scale, SIGMA * SIGMA / 2 * (0.5 / (0.04 + 0.01) + 0.5 / (0.64 + 0.01)), tm, em,
-           SEEDS, dm, sqrt(dv / SEEDS));
-    T_CHECK(fabs(dm) < 3.0 * sqrt(dv / SEEDS), "step (own variances %g times): est - true %.3g, "
-            "standard error %.3g", edge_scale, dm, sqrt(dv / SEEDS));
+           STEP_SEEDS, dm, se);
+    T_CHECK(fabs(dm) < 3.0 * se, "step (own variances %g times): est - true %.3g, standard error "
+            "%.3g", edge_scale, dm, se);
     T_CHECK(em > tm / 2 && em < tm * 2, "step (own variances %g times): estimated %.4g, true %.4g",
             edge_scale, em, tm);
     return tm;
@@ -349,13 +361,12 @@ int main(int argc, char **argv)
      * against 1.00, two renders of ten outside 2× against none). */
     tm = step_estimate(&b, f0, 2.0, d2);
     {
-        double m = 0.0, v = 0.0;
+        double moved[STEP_SEEDS], m, se;
         for (i = 0; i < STEP_SEEDS; i++)
-            m += (d2[i] - d1[i]) / STEP_SEEDS;
-        for (i = 0; i < STEP_SEEDS; i++)
-            v += (d2[i] - d1[i] - m) * (d2[i] - d1[i] - m) / (STEP_SEEDS - 1);
+            moved[i] = d2[i] - d1[i];
+        m = mean_se(moved, STEP_SEEDS, &se);
         T_NOTE("step, own variances 2 times on the edge: est - true moved by %.3g of the truth, "
-               "standard error %.3g", m / tm, sqrt(v / STEP_SEEDS) / tm);
+               "standard error %.3g", m / tm, se / tm);
         T_CHECK(fabs(m) < 0.25 * tm, "step, own variances 2 times on the edge: est - true moved "
                 "by %.3g of the truth", m / tm);
     }
