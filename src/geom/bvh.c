@@ -1,6 +1,7 @@
 /* bvh.c: single-ray traversal of the 8-wide BVH (built in bvh_build.c) with SIMD node tests and
- * 4-wide watertight triangle and quad tests (SSE, or portable C99 under MCRT_BVH_PORTABLE), of static
- * primitives and of moving ones (tested in their time-0 frame, one by one). */
+ * SIMD watertight triangle and quad tests (tri_wide.h: 4-wide with SSE, 8-wide for a leaf's two
+ * blocks with AVX2; portable C99 under MCRT_BVH_PORTABLE), of static primitives and of moving ones
+ * (tested in their time-0 frame, one by one). */
 #include "geom/bvh.h"
 
 #include <string.h>
@@ -239,20 +240,23 @@ static inline int lowest_bit(unsigned mask)
 #endif
 }
 
-/* ---- Static primitives: four triangles at a time ---- */
+/* ---- Static primitives: four or eight triangles at a time ---- */
 
-/* The ray as the 4-wide triangle test needs it: the watertight test's constants (q, also what the
- * scalar test of undecided lanes takes) and, for SSE, broadcast once per ray: the origin in the
- * permuted axis order (kx, ky, kz) and the shear. They are made at the ray's first leaf
- * (tri_ray_ready): a ray that meets no leaf, as 37 to 44% of the anchor scenes' primary rays,
- * never needs them. det: the nearest hit's determinant, for its u and v (below). */
+/* The ray as the triangle tests need it: the watertight test's constants (q, also what the scalar
+ * test of undecided lanes takes) and their broadcasts, made at the ray's first leaf (ready: 1 the
+ * 4-wide ones, 2 the 8-wide ones too, at its first leaf of more than four primitives): a ray that
+ * meets no leaf, as 37 to 44% of the anchor scenes' primary rays, never needs them. det: the
+ * nearest hit's determinant, for its u and v (below). */
 struct tri_ray {
     const struct ray *r;
     int ready;
     float det;
     struct ray_prep q;
 #ifdef BVH_SSE
-    __m128 o[3], sx, sy, sz;
+    struct { __m128 o[3], sx, sy, sz; } l4; /* the origin in the permuted axis order, the shear */
+#endif
+#ifdef BVH_AVX
+    struct { __m256 o[3], sx, sy, sz; } l8;
 #endif
 };
 
@@ -265,117 +269,59 @@ static inline void tri_ray_init(struct tri_ray *t, const struct ray *r)
 #ifdef BVH_SSE
     {
         const float o[3] = {r->o.x, r->o.y, r->o.z};
-        t->o[0] = _mm_set1_ps(o[t->q.kx]);
-        t->o[1] = _mm_set1_ps(o[t->q.ky]);
-        t->o[2] = _mm_set1_ps(o[t->q.kz]);
-        t->sx = _mm_set1_ps(t->q.sx);
-        t->sy = _mm_set1_ps(t->q.sy);
-        t->sz = _mm_set1_ps(t->q.sz);
+        t->l4.o[0] = _mm_set1_ps(o[t->q.kx]);
+        t->l4.o[1] = _mm_set1_ps(o[t->q.ky]);
+        t->l4.o[2] = _mm_set1_ps(o[t->q.kz]);
+        t->l4.sx = _mm_set1_ps(t->q.sx);
+        t->l4.sy = _mm_set1_ps(t->q.sy);
+        t->l4.sz = _mm_set1_ps(t->q.sz);
     }
 #endif
 }
 
-/* What the 4-wide test decides for the lanes of `live`: hit, lanes hit in (0, tmax), with their
- * t, e1, e2 and det (for the barycentrics); undecided, lanes it leaves to the scalar test. */
-struct tri4_result {
+/* What a SIMD test decides for the lanes of `live` (lane l: lane l & 3 of the (l >> 2)th block
+ * tested): hit, lanes hit in (0, tmax), with their t, e1, e2 and det (for the barycentrics);
+ * undecided, lanes it leaves to the scalar test. */
+struct tri_result {
     unsigned hit, undecided;
-    float t[4], e1[4], e2[4], det[4];
+    float t[8], e1[8], e2[8], det[8];
 };
 
-/* The watertight test of Woop, Benthin and Wald (prim.c's intersect_triangle), on four triangles:
- * the same float operations in the same order, so every lane it decides gets bitwise the scalar
- * answer. It leaves undecided the lanes where the scalar test would do more than this: an edge
- * function exactly 0 (recomputed in double there) and a NaN determinant (the NaN lanes of
- * tri4.h, which are not triangles or are degenerate ones, and non-finite input). A lane that
- * survives every rejection and would reach the scalar degenerate() check is a triangle that
- * tri4.c found not degenerate, so the check would pass. */
 #ifdef BVH_SSE
-static MC_ALWAYS_INLINE void tri4_test(const struct tri4 *k, const struct tri_ray *r,
-                                    float tmax, unsigned live, struct tri4_result *out)
-{
-    const __m128 zero = _mm_setzero_ps();
-    const int kx = r->q.kx, ky = r->q.ky, kz = r->q.kz;
-    __m128 az = _mm_sub_ps(_mm_load_ps(k->v[0][kz]), r->o[2]);
-    __m128 bz = _mm_sub_ps(_mm_load_ps(k->v[1][kz]), r->o[2]);
-    __m128 cz = _mm_sub_ps(_mm_load_ps(k->v[2][kz]), r->o[2]);
-    __m128 ax = _mm_add_ps(_mm_sub_ps(_mm_load_ps(k->v[0][kx]), r->o[0]), _mm_mul_ps(r->sx, az));
-    __m128 ay = _mm_add_ps(_mm_sub_ps(_mm_load_ps(k->v[0][ky]), r->o[1]), _mm_mul_ps(r->sy, az));
-    __m128 bx = _mm_add_ps(_mm_sub_ps(_mm_load_ps(k->v[1][kx]), r->o[0]), _mm_mul_ps(r->sx, bz));
-    __m128 by = _mm_add_ps(_mm_sub_ps(_mm_load_ps(k->v[1][ky]), r->o[1]), _mm_mul_ps(r->sy, bz));
-    __m128 cx = _mm_add_ps(_mm_sub_ps(_mm_load_ps(k->v[2][kx]), r->o[0]), _mm_mul_ps(r->sx, cz));
-    __m128 cy = _mm_add_ps(_mm_sub_ps(_mm_load_ps(k->v[2][ky]), r->o[1]), _mm_mul_ps(r->sy, cz));
-    __m128 e0 = _mm_sub_ps(_mm_mul_ps(bx, cy), _mm_mul_ps(by, cx));
-    __m128 e1 = _mm_sub_ps(_mm_mul_ps(cx, ay), _mm_mul_ps(cy, ax));
-    __m128 e2 = _mm_sub_ps(_mm_mul_ps(ax, by), _mm_mul_ps(ay, bx));
-    __m128 det = _mm_add_ps(_mm_add_ps(e0, e1), e2);
-    __m128 zs[3] = {_mm_mul_ps(r->sz, az), _mm_mul_ps(r->sz, bz), _mm_mul_ps(r->sz, cz)};
-    __m128 ts = _mm_add_ps(_mm_add_ps(_mm_mul_ps(e0, zs[0]), _mm_mul_ps(e1, zs[1])),
-                           _mm_mul_ps(e2, zs[2]));
-    __m128 undecided = _mm_or_ps(_mm_or_ps(_mm_cmpeq_ps(e0, zero), _mm_cmpeq_ps(e1, zero)),
-                                 _mm_or_ps(_mm_cmpeq_ps(e2, zero), _mm_cmpunord_ps(det, det)));
-    const __m128 sign = _mm_set1_ps(-0.0f);
-    const __m128i prim = _mm_load_si128((const __m128i *)k->prim);
-    /* Outside the triangle: edge functions of both signs. The lanes decided here have no edge
-     * function zero or NaN, so that is a sign bit of e0 ^ e1 or e0 ^ e2 (three operations where
-     * comparing each with zero took eleven), and their det, a sum of three nonzero terms of one
-     * sign, is not 0. A block with quads (prim[lane] with MC_TRI4_QUAD; a triangle-only one skips
-     * this) rejects its quad lanes instead where det is 0, or e1 or e2 is of the other sign than
-     * det or larger than |det|: s or t outside [0, 1] (mc_watertight_intersect). Only sign bits
-     * of `shape` are read, as of the rest of `reject`. */
-    __m128 shape = _mm_or_ps(_mm_xor_ps(e0, e1), _mm_xor_ps(e0, e2)), reject;
-    if ((unsigned)_mm_movemask_ps(_mm_castsi128_ps(prim)) & live) {
-        __m128 quad = _mm_castsi128_ps(_mm_srai_epi32(prim, 31)), adet = _mm_andnot_ps(sign, det);
-        __m128 outside = _mm_or_ps(_mm_or_ps(_mm_xor_ps(e1, det), _mm_xor_ps(e2, det)),
-                                   _mm_or_ps(_mm_cmpgt_ps(_mm_andnot_ps(sign, e1), adet),
-                                             _mm_cmpgt_ps(_mm_andnot_ps(sign, e2), adet)));
-        outside = _mm_or_ps(outside, _mm_cmpeq_ps(det, zero));
-        shape = _mm_or_ps(_mm_and_ps(quad, outside), _mm_andnot_ps(quad, shape));
-    }
-    /* Rejected: outside the shape; ts = 0 or of the other sign than det (the sign bit of
-     * det ^ ts). */
-    reject = _mm_or_ps(_mm_or_ps(shape, _mm_xor_ps(det, ts)), _mm_cmpeq_ps(ts, zero));
-    unsigned und = (unsigned)_mm_movemask_ps(undecided) & live;
-    unsigned cand = live & ~und & ~(unsigned)_mm_movemask_ps(reject);
-    out->undecided = und;
-    out->hit = 0;
-    if (cand) {
-        /* t must exceed mc_tri_t_error's bound (prim.h), computed in the same operations. */
-        const __m128 g2 = _mm_set1_ps(MC_GAMMA(2)),
-                     g3 = _mm_set1_ps(MC_GAMMA(3)), g5 = _mm_set1_ps(MC_GAMMA(5));
-        __m128 t = _mm_div_ps(ts, det);
-        __m128 mx = _mm_max_ps(_mm_max_ps(_mm_andnot_ps(sign, ax), _mm_andnot_ps(sign, bx)),
-                               _mm_andnot_ps(sign, cx));
-        __m128 my = _mm_max_ps(_mm_max_ps(_mm_andnot_ps(sign, ay), _mm_andnot_ps(sign, by)),
-                               _mm_andnot_ps(sign, cy));
-        __m128 mz = _mm_max_ps(_mm_max_ps(_mm_andnot_ps(sign, zs[0]), _mm_andnot_ps(sign, zs[1])),
-                               _mm_andnot_ps(sign, zs[2]));
-        __m128 me = _mm_max_ps(_mm_max_ps(_mm_andnot_ps(sign, e0), _mm_andnot_ps(sign, e1)),
-                               _mm_andnot_ps(sign, e2));
-        __m128 dz = _mm_mul_ps(g3, mz);
-        __m128 dx = _mm_mul_ps(g5, _mm_add_ps(mx, mz));
-        __m128 dy = _mm_mul_ps(g5, _mm_add_ps(my, mz));
-        __m128 de = _mm_mul_ps(_mm_set1_ps(2.0f),
-                               _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_mul_ps(g2, mx), my),
-                                                     _mm_mul_ps(dy, mx)),
-                                          _mm_mul_ps(dx, my)));
-        __m128 dt = _mm_div_ps(
-            _mm_mul_ps(_mm_set1_ps(3.0f),
-                       _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_mul_ps(g3, me), mz),
-                                             _mm_mul_ps(de, mz)),
-                                  _mm_mul_ps(dz, me))),
-            _mm_andnot_ps(sign, det));
-        cand &= (unsigned)_mm_movemask_ps(
-            _mm_and_ps(_mm_cmpgt_ps(t, dt), _mm_cmplt_ps(t, _mm_set1_ps(tmax))));
-        out->hit = cand;
-        _mm_storeu_ps(out->t, t);
-        _mm_storeu_ps(out->e1, e1);
-        _mm_storeu_ps(out->e2, e2);
-        _mm_storeu_ps(out->det, det);
-    }
-}
+/* tri_wide.h on one block of four lanes (SSE). */
+#define TRI_TEST tri4_test
+#define TRI_TARGET
+#define TRI_LANES l4
+#define VF __m128
+#define VI __m128i
+#define VOP(op) _mm_##op##_ps
+#define V_LOAD(k, vertex, axis) _mm_load_ps((k)->v[vertex][axis])
+#define V_PRIM(k) _mm_load_si128((const __m128i *)(k)->prim)
+#define V_EQ(a, b) _mm_cmpeq_ps(a, b)
+#define V_GT(a, b) _mm_cmpgt_ps(a, b)
+#define V_LT(a, b) _mm_cmplt_ps(a, b)
+#define V_UNORD(a, b) _mm_cmpunord_ps(a, b)
+#define V_CAST_FI(x) _mm_castsi128_ps(x)
+#define V_SIGN_FILL(x) _mm_castsi128_ps(_mm_srai_epi32(x, 31))
+#include "geom/tri_wide.h"
+#undef TRI_TEST
+#undef TRI_TARGET
+#undef TRI_LANES
+#undef VF
+#undef VI
+#undef VOP
+#undef V_LOAD
+#undef V_PRIM
+#undef V_EQ
+#undef V_GT
+#undef V_LT
+#undef V_UNORD
+#undef V_CAST_FI
+#undef V_SIGN_FILL
 #else
+/* The same decisions lane by lane, in portable C99. */
 static MC_ALWAYS_INLINE void tri4_test(const struct tri4 *k, const struct tri_ray *r,
-                                    float tmax, unsigned live, struct tri4_result *out)
+                                    float tmax, unsigned live, struct tri_result *out)
 {
     const float o[3] = {r->q.r.o.x, r->q.r.o.y, r->q.r.o.z};
     const int kx = r->q.kx, ky = r->q.ky, kz = r->q.kz;
@@ -423,9 +369,93 @@ static MC_ALWAYS_INLINE void tri4_test(const struct tri4 *k, const struct tri_ra
 }
 #endif
 
+#ifdef BVH_AVX
+/* tri_wide.h on two consecutive blocks of a leaf, eight lanes (AVX2): the lanes of block k in
+ * the low half, of block k + 1 in the high. */
+#define TRI_TEST tri8_test
+#define TRI_TARGET AVX_TARGET
+#define TRI_LANES l8
+#define VF __m256
+#define VI __m256i
+#define VOP(op) _mm256_##op##_ps
+#define V_LOAD(k, vertex, axis) \
+    _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_load_ps((k)[0].v[vertex][axis])), \
+                         _mm_load_ps((k)[1].v[vertex][axis]), 1)
+#define V_PRIM(k) \
+    _mm256_inserti128_si256(_mm256_castsi128_si256(_mm_load_si128((const __m128i *)(k)[0].prim)), \
+                            _mm_load_si128((const __m128i *)(k)[1].prim), 1)
+#define V_EQ(a, b) _mm256_cmp_ps(a, b, _CMP_EQ_OQ)
+#define V_GT(a, b) _mm256_cmp_ps(a, b, _CMP_GT_OQ)
+#define V_LT(a, b) _mm256_cmp_ps(a, b, _CMP_LT_OQ)
+#define V_UNORD(a, b) _mm256_cmp_ps(a, b, _CMP_UNORD_Q)
+#define V_CAST_FI(x) _mm256_castsi256_ps(x)
+#define V_SIGN_FILL(x) _mm256_castsi256_ps(_mm256_srai_epi32(x, 31))
+#include "geom/tri_wide.h"
+#undef TRI_TEST
+#undef TRI_TARGET
+#undef TRI_LANES
+#undef VF
+#undef VI
+#undef VOP
+#undef V_LOAD
+#undef V_PRIM
+#undef V_EQ
+#undef V_GT
+#undef V_LT
+#undef V_UNORD
+#undef V_CAST_FI
+#undef V_SIGN_FILL
+
+/* The 8-wide broadcasts, from the 4-wide ones (tri_ray_init's, made before). */
+static inline AVX_TARGET void tri_ray_init8(struct tri_ray *t)
+{
+    t->ready = 2;
+    t->l8.o[0] = _mm256_broadcastss_ps(t->l4.o[0]);
+    t->l8.o[1] = _mm256_broadcastss_ps(t->l4.o[1]);
+    t->l8.o[2] = _mm256_broadcastss_ps(t->l4.o[2]);
+    t->l8.sx = _mm256_broadcastss_ps(t->l4.sx);
+    t->l8.sy = _mm256_broadcastss_ps(t->l4.sy);
+    t->l8.sz = _mm256_broadcastss_ps(t->l4.sz);
+}
+#endif
+
+/* Takes the lanes that the test of the blocks from k decided as hits, or left undecided (tested
+ * here by the scalar test), in lane order, so that of equal distances the first primitive wins, as
+ * in a loop over the primitives. Returns whether h was updated (h->prim too); with any_hit, stops
+ * at the first hit. */
+static MC_ALWAYS_INLINE int take_hits(struct tri_ray *r, const struct prim *prims,
+                                      const struct tri4 *k, const struct tri_result *res,
+                                      struct hit *h, int any_hit)
+{
+    unsigned todo;
+    int found = 0;
+    for (todo = res->hit | res->undecided; todo; todo &= todo - 1) {
+        int l = lowest_bit(todo);
+        uint32_t prim = mc_tri4_prim(k[l >> 2].prim[l & 3]);
+        if (res->hit >> l & 1) {
+            if (!(res->t[l] < h->t)) /* an earlier lane is nearer */
+                continue;
+            /* u and v are e1 / det and e2 / det, divided once the nearest hit is known
+             * (query_static) rather than at every nearer hit found on the way. */
+            h->t = res->t[l];
+            h->u = res->e1[l];
+            h->v = res->e2[l];
+            r->det = res->det[l];
+        } else if (mc_prim_intersect_prep(&prims[prim], &r->q, h)) {
+            r->det = 1.0f; /* u and v are final: dividing by 1 keeps them */
+        } else {
+            continue;
+        }
+        h->prim = prim;
+        found = 1;
+        if (any_hit)
+            break;
+    }
+    return found;
+}
+
 /* Static primitives: ctx is the tri_ray. The leaf of count primitives whose blocks start at block
- * `first` (tri4.h) is tested a block at a time, lanes in primitive order, so that of equal
- * distances the first primitive wins, as in a loop over the primitives. Returns whether h was
+ * `first` (tri4.h) is tested a block at a time, lanes in primitive order. Returns whether h was
  * updated (h->prim too); with any_hit, stops at the first hit. */
 static MC_ALWAYS_INLINE int leaf_static(void *ctx, const struct bvh *b, const struct prim *prims,
                                      uint32_t first, uint32_t count, struct hit *h, int any_hit)
@@ -437,34 +467,50 @@ static MC_ALWAYS_INLINE int leaf_static(void *ctx, const struct bvh *b, const st
         tri_ray_init(r, r->r);
     /* count goes down by 4 a block: the lanes of the leaf in this block are its first min(count, 4). */
     for (; k < end; k++, count -= 4) {
-        unsigned live = count >= 4 ? 0xFu : 0xFu >> (4 - count);
-        struct tri4_result res;
-        unsigned todo;
-        tri4_test(k, r, h->t, live, &res);
-        for (todo = res.hit | res.undecided; todo; todo &= todo - 1) {
-            int l = lowest_bit(todo);
-            if (res.hit >> l & 1) {
-                if (!(res.t[l] < h->t)) /* an earlier lane of this block is nearer */
-                    continue;
-                /* u and v are e1 / det and e2 / det, divided once the nearest hit is known
-                 * (query_static) rather than at every nearer hit found on the way. */
-                h->t = res.t[l];
-                h->u = res.e1[l];
-                h->v = res.e2[l];
-                r->det = res.det[l];
-            } else if (mc_prim_intersect_prep(&prims[mc_tri4_prim(k->prim[l])], &r->q, h)) {
-                r->det = 1.0f; /* u and v are final: dividing by 1 keeps them */
-            } else {
-                continue;
-            }
+        struct tri_result res;
+        tri4_test(k, r, h->t, count >= 4 ? 0xFu : 0xFu >> (4 - count), &res);
+        if (take_hits(r, prims, k, &res, h, any_hit)) {
             if (any_hit)
                 return 1;
-            h->prim = mc_tri4_prim(k->prim[l]);
             found = 1;
         }
     }
     return found;
 }
+
+#ifdef BVH_AVX
+/* leaf_static's contract, two blocks at a time in one 8-wide test; a last block alone (a leaf of
+ * at most four primitives, as most are) in the 4-wide one. */
+static MC_ALWAYS_INLINE AVX_TARGET int leaf_static8(void *ctx, const struct bvh *b,
+                                                    const struct prim *prims, uint32_t first,
+                                                    uint32_t count, struct hit *h, int any_hit)
+{
+    struct tri_ray *r = ctx;
+    const struct tri4 *k = &b->tri4[first];
+    int found = 0;
+    if (count <= 4)
+        return leaf_static(ctx, b, prims, first, count, h, any_hit);
+    if (r->ready < 2) {
+        if (!r->ready)
+            tri_ray_init(r, r->r);
+        tri_ray_init8(r);
+    }
+    /* count goes down by 8 a pair of blocks: the lanes of the leaf in it are its first
+     * min(count, 8). */
+    for (; count > 4; k += 2, count = count > 8 ? count - 8 : 0) {
+        struct tri_result res;
+        tri8_test(k, r, h->t, count >= 8 ? 0xFFu : 0xFFu >> (8 - count), &res);
+        if (take_hits(r, prims, k, &res, h, any_hit)) {
+            if (any_hit)
+                return 1;
+            found = 1;
+        }
+    }
+    if (count)
+        found |= leaf_static(ctx, b, prims, (uint32_t)(k - b->tri4), count, h, any_hit);
+    return found;
+}
+#endif
 
 /* ---- Moving primitives: one at a time ---- */
 
@@ -706,13 +752,13 @@ static MC_ALWAYS_INLINE int traverse(const struct bvh *b, const struct prim *pri
  * written only on a hit. */
 static MC_ALWAYS_INLINE int query_static(const struct bvh *b, const struct prim *prims,
                                       const struct ray *r, struct hit *h, int any_hit,
-                                      node_prep_fn prep, node_test_fn node)
+                                      node_prep_fn prep, node_test_fn node, leaf_test leaf)
 {
     struct tri_ray t;
     struct hit nearest;
     t.r = r;
     t.ready = 0;
-    if (!traverse(b, prims, r, &nearest, any_hit, prep, node, leaf_static, &t))
+    if (!traverse(b, prims, r, &nearest, any_hit, prep, node, leaf, &t))
         return 0;
     if (!any_hit) {
         nearest.u /= t.det;
@@ -729,13 +775,13 @@ static MC_ALWAYS_INLINE int query_static(const struct bvh *b, const struct prim 
 static MC_NOINLINE AVX_TARGET int intersect_simd(const struct bvh *b, const struct prim *prims,
                                               const struct ray *r, struct hit *h)
 {
-    return query_static(b, prims, r, h, 0, node_prep8, node_test8);
+    return query_static(b, prims, r, h, 0, node_prep8, node_test8, leaf_static8);
 }
 
 static MC_NOINLINE AVX_TARGET int occluded_simd(const struct bvh *b, const struct prim *prims,
                                              const struct ray *r)
 {
-    return query_static(b, prims, r, NULL, 1, node_prep8, node_test8);
+    return query_static(b, prims, r, NULL, 1, node_prep8, node_test8, leaf_static8);
 }
 #endif
 
@@ -744,13 +790,13 @@ static MC_NOINLINE AVX_TARGET int occluded_simd(const struct bvh *b, const struc
 static MC_NOINLINE int intersect_plain(const struct bvh *b, const struct prim *prims,
                                     const struct ray *r, struct hit *h)
 {
-    return query_static(b, prims, r, h, 0, node_prep, node_test);
+    return query_static(b, prims, r, h, 0, node_prep, node_test, leaf_static);
 }
 
 static MC_NOINLINE int occluded_plain(const struct bvh *b, const struct prim *prims,
                                    const struct ray *r)
 {
-    return query_static(b, prims, r, NULL, 1, node_prep, node_test);
+    return query_static(b, prims, r, NULL, 1, node_prep, node_test, leaf_static);
 }
 #endif
 

@@ -35,16 +35,25 @@ enum {
      * primitives reaches LEAF_MAX after at most 28 more levels, depth 60 at most. */
     SAH_DEPTH = 32
 };
-/* The SAH counts a leaf's cost by its 4-wide blocks (tri4.h), ceil(n/4) block tests, as Embree's
- * builder does for its Triangle4 leaves: a leaf of 5 costs as much as one of 8. COST_TRAVERSE is
- * the cost of visiting an inner node (two box tests) in units of one block test. Measured on the
- * anchor scenes (tests/tools/bench.c): at 1.0 and above the SAH prefers two-block leaves (5.3 to
- * 6.6 primitives a leaf on sphere-1M, 8.7 to 10.3 expected block tests a ray against Embree's
- * 6.6); at 0.5 the tree's expected node visits and block tests are Embree's within 10% on all
- * three scenes (sphere-1M 18.8 / 6.1 against 18.2 / 6.6), with 3.8 primitives a leaf and 64
- * bytes a triangle. The trace times of 0.5 to 2 were within the benchmark's noise of each other. */
+/* The SAH counts a leaf's cost in the traversal's leaf tests (bvh.c): a 4-wide test of one block
+ * (tri4.h) for up to four primitives, and with AVX2 one 8-wide test of two blocks for five to
+ * eight, which costs LEAF8_COST 4-wide ones. (The tree does not depend on the processor: where SSE
+ * tests the two blocks one by one, such a leaf costs two.) COST_TRAVERSE is the cost of visiting an
+ * inner node (two box tests) in the same unit. Measured on the anchor scenes (tests/tools/bench.c),
+ * counting blocks as Embree's builder counts its Triangle4 leaves: at COST_TRAVERSE 1.0 and above
+ * the SAH preferred two-block leaves (5.3 to 6.6 primitives a leaf on sphere-1M, 8.7 to 10.3
+ * expected block tests a ray against Embree's 6.6); at 0.5 the tree's expected node visits and
+ * block tests were Embree's within 10% on all three scenes (sphere-1M 18.8 / 6.1 against 18.2 /
+ * 6.6), with 3.8 primitives a leaf and 64 bytes a triangle, and the trace times of 0.5 to 2 were
+ * within the benchmark's noise of each other. */
 #define COST_TRAVERSE 0.5f
-static float blocks_of(uint32_t n) { return (float)mc_tri4_blocks(n); }
+#define LEAF8_COST 1.25f
+/* The leaf tests of a leaf of n primitives, in units of one 4-wide test. */
+static float leaf_tests(uint32_t n)
+{
+    uint32_t rest = n % 8;
+    return (float)(n / 8) * LEAF8_COST + (rest == 0 ? 0.0f : rest <= 4 ? 1.0f : LEAF8_COST);
+}
 
 /* A node of the binary tree the build makes and then collapses: 32 bytes. The two children of an
  * inner node are stored together, at index and index + 1. */
@@ -448,7 +457,7 @@ static int find_split(const struct ref *refs, const struct task *t, int threads,
             alo = f4_min(alo, bins.lo[axis][i]);
             ahi = f4_max(ahi, bins.hi[axis][i]);
             n += bins.cnt[axis][i];
-            right_cost[i] = f4_half_area(alo, ahi) * blocks_of(n);
+            right_cost[i] = f4_half_area(alo, ahi) * leaf_tests(n);
         }
         alo = empty_lo;
         ahi = empty_hi;
@@ -459,7 +468,7 @@ static int find_split(const struct ref *refs, const struct task *t, int threads,
             left_n += bins.cnt[axis][i - 1];
             if (left_n == 0 || left_n == t->end - t->begin)
                 continue;
-            cost = f4_half_area(alo, ahi) * blocks_of(left_n) + right_cost[i];
+            cost = f4_half_area(alo, ahi) * leaf_tests(left_n) + right_cost[i];
             if (!found || cost < best->cost) {
                 found = 1;
                 best->axis = axis;
@@ -626,13 +635,13 @@ static size_t build_nodes(struct bnode *nodes, struct ref *refs, const struct ta
             split_found = find_split(refs, &t, threads, &s);
             if (split_found < 0)
                 return 0;
-            /* SAH leaf test in units of one block test, both sides scaled by the node's half area A
-             * so that no division is needed: leaf B(N)·A against split C_t·A + A_l·B(N_l) +
-             * A_r·B(N_r), B(N) = ceil(N/4). Without a split (all centroids coincide) only the size
+            /* SAH leaf test in units of one 4-wide leaf test, both sides scaled by the node's half
+             * area A so that no division is needed: leaf B(N)·A against split C_t·A + A_l·B(N_l) +
+             * A_r·B(N_r), B(N) = leaf_tests(N). Without a split (all centroids coincide) only the size
              * decides. */
             if (split_found && leaf) {
                 float area = box_half_area(&t.box);
-                leaf = blocks_of(size) * area <= COST_TRAVERSE * area + s.cost;
+                leaf = leaf_tests(size) * area <= COST_TRAVERSE * area + s.cost;
             }
         }
         if (leaf) {
@@ -818,7 +827,7 @@ static void plan_collapse(const struct bnode *bn, size_t count, struct plan *pla
             p->leaf = 1;
             p->node_left = 0;
             for (i = 0; i < BVH_WIDTH; i++)
-                cost[x][i] = area * blocks_of(b->count);
+                cost[x][i] = area * leaf_tests(b->count);
             continue;
         }
         p->first = plan[l].first;
@@ -837,7 +846,7 @@ static void plan_collapse(const struct bnode *bn, size_t count, struct plan *pla
         }
         /* One slot: a leaf (a subtree of at most LEAF_MAX primitives, which are consecutive), or a
          * wide node whose slots the children share. */
-        as_leaf = p->count <= LEAF_MAX ? area * blocks_of(p->count) : INFINITY;
+        as_leaf = p->count <= LEAF_MAX ? area * leaf_tests(p->count) : INFINITY;
         as_node = COST_WIDE * area + dist[BVH_WIDTH];
         p->leaf = as_leaf <= as_node;
         p->node_left = dist_left[BVH_WIDTH];

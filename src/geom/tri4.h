@@ -9,7 +9,8 @@
 /* Every leaf starts a block of its own (Embree's Triangle4 leaves do the same): a leaf of count
  * primitives is the mc_tri4_blocks(count) consecutive blocks from the index its node slot holds,
  * its primitives in lanes 0, 1, ... in order, so a leaf of up to 4 primitives is one aligned block
- * test, never two half-used ones. The lanes past count (padding) belong to no primitive; the
+ * test, never two half-used ones, and a leaf of 5 to 8 two consecutive blocks, which the AVX2
+ * traversal tests as one 8-wide vector (bvh.c). The lanes past count (padding) belong to no primitive; the
  * traversal masks them out by count, and their coordinates are NaN, so that a test that did not
  * would leave them undecided rather than report a hit.
  *

@@ -265,6 +265,36 @@ static size_t make_scene(struct prim *prims, pcg32 *g)
     return n;
 }
 
+/* Leaves of more than four primitives, which the AVX2 traversal tests eight lanes at a time
+ * (two blocks), and how many of them hold a quad, or a sphere (a lane the SIMD test leaves to the
+ * scalar one). */
+struct wide_leaves {
+    size_t leaves, with_quad, with_sphere;
+};
+
+static struct wide_leaves count_wide_leaves(const struct bvh *b, const struct prim *prims)
+{
+    struct wide_leaves w = {0, 0, 0};
+    size_t k;
+    int i;
+    for (k = 0; k < b->node_count; k++)
+        for (i = 0; i < BVH_WIDTH; i++) {
+            const struct bvh_node *nd = &b->nodes[k];
+            uint32_t j, quad = 0, sphere = 0;
+            if (nd->count[i] <= 4)
+                continue;
+            for (j = 0; j < nd->count[i]; j++) {
+                uint32_t p = mc_tri4_prim(b->tri4[nd->child[i] + j / 4].prim[j % 4]);
+                quad |= prims[p].kind == PRIM_QUAD;
+                sphere |= prims[p].kind == PRIM_SPHERE;
+            }
+            w.leaves++;
+            w.with_quad += quad;
+            w.with_sphere += sphere;
+        }
+    return w;
+}
+
 /* The BVH must give the brute-force answer bit for bit: the same t, and the same primitive unless
  * two primitives are hit at exactly the same t (then the order of testing decides). */
 static void test_against_brute_force(void)
@@ -289,6 +319,14 @@ static void test_against_brute_force(void)
            b.tri4_count);
     /* Leaves that do not fill their last block, so that the rays below cover the masked lanes. */
     T_CHECK(4 * b.tri4_count > n, "%zu blocks for %zu prims: no padded lane", b.tri4_count, n);
+    {
+        struct wide_leaves w = count_wide_leaves(&b, prims);
+        T_CHECK(w.leaves > 100 && w.with_quad > 0 && w.with_sphere > 0,
+                "leaves of 5-8 prims: %zu, %zu with a quad, %zu with a sphere: the 8-wide test "
+                "would go untested", w.leaves, w.with_quad, w.with_sphere);
+        T_NOTE("%zu leaves of 5-8 prims, %zu with a quad, %zu with a sphere", w.leaves,
+               w.with_quad, w.with_sphere);
+    }
     for (i = 0; i < RAYS; i++) {
         struct ray r;
         struct hit hb, hf;
