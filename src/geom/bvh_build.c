@@ -48,6 +48,12 @@ enum {
  * within the benchmark's noise of each other. */
 #define COST_TRAVERSE 0.5f
 #define LEAF8_COST 1.25f
+/* A sphere's or a disk's test, which the SIMD test leaves to the scalar one (tri4.h), in the same
+ * unit: about 80 instructions with its call (callgrind, scenes/glossy-floor.mcrt) against about 100
+ * of a 4-wide test. Without it the SAH made the five primitives of that scene one leaf, whose three
+ * spheres every ray then tested one by one: 14% more instructions a render than with it. */
+#define SCALAR_COST 0.8f
+
 /* The leaf tests of a leaf of n primitives, in units of one 4-wide test. */
 static float leaf_tests(uint32_t n)
 {
@@ -55,12 +61,19 @@ static float leaf_tests(uint32_t n)
     return (float)(n / 8) * LEAF8_COST + (rest == 0 ? 0.0f : rest <= 4 ? 1.0f : LEAF8_COST);
 }
 
+/* The cost of a leaf of n primitives of which `scalar` take the scalar test as well. */
+static float leaf_cost(uint32_t n, uint32_t scalar)
+{
+    return leaf_tests(n) + SCALAR_COST * (float)scalar;
+}
+
 /* A node of the binary tree the build makes and then collapses: 32 bytes. The two children of an
  * inner node are stored together, at index and index + 1. */
 struct bnode {
     float b[6];      /* lower corner x, y, z, then upper corner x, y, z */
     uint32_t index;  /* inner: index of the first child; leaf: of the first primitive */
-    uint32_t count;  /* leaf: number of primitives (>= 1); inner: 0 */
+    uint16_t count;  /* leaf: number of primitives (1 to LEAF_MAX); inner: 0 */
+    uint16_t scalar; /* leaf: how many of them are scalar (struct ref) */
 };
 
 /* An axis-aligned box as arrays, so that the build can index it by axis. */
@@ -102,14 +115,15 @@ static float box_half_area(const struct box *b)
     return x >= 0.0f && y >= 0.0f && z >= 0.0f ? x * y + y * z + z * x : 0.0f;
 }
 
-/* A primitive during the build: its bounds and original index. Centroids are used doubled,
- * lo + hi, which saves a multiplication and changes no decision. 32 bytes: lo and hi are each
- * read as one 4-lane vector (below), whose fourth lane (id, zero) is ignored. */
+/* A primitive during the build: its bounds and original index, and whether the leaf tests leave
+ * it to the scalar test (a sphere or a disk: scalar 1, else 0; see leaf_cost). Centroids are used
+ * doubled, lo + hi, which saves a multiplication and changes no decision. 32 bytes: lo and hi are
+ * each read as one 4-lane vector (below), whose fourth lane (id, scalar) is ignored. */
 struct ref {
     float lo[3];
     uint32_t id;
     float hi[3];
-    float zero;
+    float scalar;
 };
 
 /* Four floats, of which the build uses lanes 0..2 (x, y, z): one SSE register where SSE2 is there,
@@ -600,6 +614,23 @@ static void *alloc_large(size_t bytes)
     return p;
 }
 
+/* How many of the scalar refs of t's range split s sends to the left side, and to the right. */
+static void scalar_sides(const struct ref *refs, const struct task *t, const struct split *s,
+                         uint32_t *left, uint32_t *right)
+{
+    int nbins = bin_count(t), axis = s->axis;
+    float lo = t->cbox.lo[axis], scale = bin_scale(&t->cbox, axis, nbins);
+    uint32_t i;
+    *left = *right = 0;
+    for (i = t->begin; i < t->end; i++)
+        if (refs[i].scalar != 0.0f) {
+            if (bin_of(refs[i].lo[axis] + refs[i].hi[axis], lo, scale, nbins) < s->bin)
+                ++*left;
+            else
+                ++*right;
+        }
+}
+
 /* The binary build of the subtree of task root (root->node is ignored: the subtree's root is
  * node 0, and node 1 is unused) into nodes, which has room for 2 (root->end - root->begin) nodes;
  * returns the number used. Depth first with an explicit stack. With defer > 0, subtrees of more
@@ -636,17 +667,27 @@ static size_t build_nodes(struct bnode *nodes, struct ref *refs, const struct ta
             if (split_found < 0)
                 return 0;
             /* SAH leaf test in units of one 4-wide leaf test, both sides scaled by the node's half
-             * area A so that no division is needed: leaf B(N)·A against split C_t·A + A_l·B(N_l) +
-             * A_r·B(N_r), B(N) = leaf_tests(N). Without a split (all centroids coincide) only the size
-             * decides. */
+             * area A so that no division is needed: leaf B(N)·A + S·N_s·A against split C_t·A +
+             * A_l·B(N_l) + A_r·B(N_r) + S·(A_l·N_sl + A_r·N_sr), B(N) = leaf_tests(N), N_s the
+             * scalar primitives and S = SCALAR_COST. Without a split (all centroids coincide) only
+             * the size decides. */
             if (split_found && leaf) {
                 float area = box_half_area(&t.box);
-                leaf = leaf_tests(size) * area <= COST_TRAVERSE * area + s.cost;
+                uint32_t sl, sr;
+                scalar_sides(refs, &t, &s, &sl, &sr);
+                leaf = leaf_cost(size, sl + sr) * area
+                       <= COST_TRAVERSE * area + s.cost
+                              + SCALAR_COST * (box_half_area(&s.left) * (float)sl
+                                               + box_half_area(&s.right) * (float)sr);
             }
         }
         if (leaf) {
+            uint32_t i, scalar = 0;
+            for (i = t.begin; i < t.end; i++)
+                scalar += refs[i].scalar != 0.0f;
             node->index = t.begin;
-            node->count = size;
+            node->count = (uint16_t)size;
+            node->scalar = (uint16_t)scalar;
             continue;
         }
         if (split_found) {
@@ -659,6 +700,7 @@ static size_t build_nodes(struct bnode *nodes, struct ref *refs, const struct ta
         }
         node->index = c;
         node->count = 0;
+        node->scalar = 0;
         count += 2;
         stack[sp].begin = mid;
         stack[sp].end = t.end;
@@ -799,6 +841,8 @@ static float bnode_half_area(const struct bnode *n)
 struct plan {
     uint32_t first, count;       /* its primitives: prims[order[first .. first + count)] */
     uint8_t leaf;                /* as one slot: 1 a leaf of all of them, 0 a wide node */
+    uint8_t scalar;              /* how many of them are scalar (struct ref), at most 255: exact
+                                  * where it is read, for at most LEAF_MAX primitives */
     uint8_t node_left;           /* as a wide node: how many of its slots its left child takes */
     uint8_t left[BVH_WIDTH + 1]; /* left[i], i >= 2: in at most i slots, how many the left child
                                   * takes; 0: one slot (the subtree as leaf or node, as `leaf`) */
@@ -825,13 +869,16 @@ static void plan_collapse(const struct bnode *bn, size_t count, struct plan *pla
             p->first = b->index;
             p->count = b->count;
             p->leaf = 1;
+            p->scalar = (uint8_t)b->scalar;
             p->node_left = 0;
             for (i = 0; i < BVH_WIDTH; i++)
-                cost[x][i] = area * leaf_tests(b->count);
+                cost[x][i] = area * leaf_cost(b->count, b->scalar);
             continue;
         }
         p->first = plan[l].first;
         p->count = plan[l].count + plan[r].count;
+        p->scalar = (uint8_t)(plan[l].scalar + plan[r].scalar < 255u ? plan[l].scalar + plan[r].scalar
+                                                                      : 255u);
         /* dist[i]: the two children's subtrees in at most i slots together. */
         for (i = 2; i <= BVH_WIDTH; i++) {
             dist[i] = INFINITY;
@@ -846,7 +893,7 @@ static void plan_collapse(const struct bnode *bn, size_t count, struct plan *pla
         }
         /* One slot: a leaf (a subtree of at most LEAF_MAX primitives, which are consecutive), or a
          * wide node whose slots the children share. */
-        as_leaf = p->count <= LEAF_MAX ? area * leaf_tests(p->count) : INFINITY;
+        as_leaf = p->count <= LEAF_MAX ? area * leaf_cost(p->count, p->scalar) : INFINITY;
         as_node = COST_WIDE * area + dist[BVH_WIDTH];
         p->leaf = as_leaf <= as_node;
         p->node_left = dist_left[BVH_WIDTH];
@@ -1009,7 +1056,7 @@ static void setup_chunk(void *ctx, size_t c)
         r->hi[1] = pb.hi.y;
         r->hi[2] = pb.hi.z;
         r->id = (uint32_t)i;
-        r->zero = 0.0f;
+        r->scalar = mc_tri4_simd_kind(rs->prims[i].kind) ? 0.0f : 1.0f;
         for (a = 0; a < 3; a++)
             cc[a] = r->lo[a] + r->hi[a];
         box_grow(&box, r->lo, r->hi);

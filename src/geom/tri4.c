@@ -7,7 +7,7 @@
  * test has no such check, so those go to scalar lanes. */
 static int decidable(const struct prim *p)
 {
-    return (p->kind == PRIM_TRIANGLE || p->kind == PRIM_QUAD) && !mc_prim_degenerate(p);
+    return mc_tri4_simd_kind(p->kind) && !mc_prim_degenerate(p);
 }
 
 void mc_tri4_fill(struct tri4 *k, const struct prim *prims, const uint32_t *ids, uint32_t count)

@@ -34,6 +34,13 @@ struct tri4 {
 #define MC_TRI4_QUAD 0x80000000u
 static inline uint32_t mc_tri4_prim(uint32_t lane_prim) { return lane_prim & ~MC_TRI4_QUAD; }
 
+/* Whether primitives of this kind go in the SIMD lanes: triangles and quads (but for degenerate
+ * ones, tri4.c). The others, spheres and disks, take the scalar test in a NaN lane. */
+static inline int mc_tri4_simd_kind(enum prim_kind kind)
+{
+    return kind == PRIM_TRIANGLE || kind == PRIM_QUAD;
+}
+
 /* Blocks that a leaf of count primitives takes. */
 static inline uint32_t mc_tri4_blocks(uint32_t count) { return (count + 3) / 4; }
 

@@ -572,6 +572,45 @@ static void test_bad_rays(void)
     mc_bvh_free(&b);
 }
 
+/* The SAH prices a sphere by its scalar test (bvh_build.c, SCALAR_COST): glossy-floor's five
+ * primitives, a 20 x 20 floor, a small light and three unit spheres, are not one leaf of five,
+ * whose spheres every ray would test, but a leaf of the floor and the light beside the spheres'. */
+static void test_scalar_prims_apart(void)
+{
+    struct prim prims[5];
+    struct bvh b;
+    mc_diag d;
+    size_t k;
+    int i, depth, floor_leaves = 0, floor_with_sphere = 0;
+    prims[0] = test_prim(PRIM_QUAD, v3(-10.0f, 0.0f, 10.0f), v3(20.0f, 0.0f, 0.0f),
+                         v3(0.0f, 0.0f, -20.0f));
+    prims[1] = test_prim(PRIM_QUAD, v3(-0.75f, 4.0f, 1.5f), v3(1.5f, 0.0f, 0.0f),
+                         v3(0.0f, 0.0f, 0.5f));
+    for (i = 0; i < 3; i++) {
+        prims[2 + i] = test_prim(PRIM_SPHERE, v3(-2.4f + 2.4f * (float)i, 1.0f, i == 1 ? -0.5f : 0.0f),
+                                 v3s(0.0f), v3s(0.0f));
+        prims[2 + i].p[1].x = 1.0f;
+    }
+    T_CHECK(mc_bvh_build(&b, prims, 5, &d) == MCRT_OK, "build: %s", d.msg);
+    T_CHECK(check_tree(&b, prims, 5, &depth) == 0, "tree invariants");
+    for (k = 0; k < b.node_count; k++)
+        for (i = 0; i < BVH_WIDTH; i++) {
+            const struct bvh_node *nd = &b.nodes[k];
+            uint32_t j, has_floor = 0, has_sphere = 0;
+            for (j = 0; j < nd->count[i]; j++) {
+                uint32_t p = mc_tri4_prim(b.tri4[nd->child[i] + j / 4].prim[j % 4]);
+                has_floor |= p == 0;
+                has_sphere |= prims[p].kind == PRIM_SPHERE;
+            }
+            floor_leaves += (int)has_floor;
+            floor_with_sphere += (int)(has_floor && has_sphere);
+        }
+    T_CHECK(floor_leaves == 1 && floor_with_sphere == 0,
+            "the floor's leaf holds a sphere too (%d of %d leaves): every ray meeting the floor "
+            "tests it", floor_with_sphere, floor_leaves);
+    mc_bvh_free(&b);
+}
+
 /* One or two primitives make a binary tree that is a single leaf: the wide root holds it alone. */
 static void test_single_leaf(void)
 {
@@ -682,6 +721,7 @@ int main(void)
     test_empty();
     test_parallel_build_same();
     test_single_leaf();
+    test_scalar_prims_apart();
     test_against_brute_force();
     test_coincident_centroids();
     test_coplanar();
