@@ -27,7 +27,7 @@
 
 enum {
     BINS = 16,       /* SAH candidates per axis; Wald 2007 finds 16 within a few % of a full sweep */
-    LEAF_MIN = 4,    /* a node of at most this many primitives is always a leaf: one block */
+    LEAF_MIN = 4,    /* a node of at most this many triangles and quads is always a leaf: one block */
     LEAF_MAX = 8,    /* the SAH may choose a leaf of up to this many: two blocks */
     MAX_BUILD_THREADS = 64,
     /* Below this depth nodes split at the median index, so that no node is deeper than
@@ -650,7 +650,7 @@ static size_t build_nodes(struct bnode *nodes, struct ref *refs, const struct ta
     while (sp > 0) {
         struct task t = stack[--sp];
         struct bnode *node = &nodes[t.node];
-        uint32_t size = t.end - t.begin, mid, c = (uint32_t)count;
+        uint32_t size = t.end - t.begin, mid, c = (uint32_t)count, scalar = 0, i;
         struct split s;
         int split_found = 0, leaf = size <= LEAF_MAX;
 
@@ -660,7 +660,11 @@ static size_t build_nodes(struct bnode *nodes, struct ref *refs, const struct ta
         }
 
         set_node_box(node, &t.box);
-        if (size <= LEAF_MIN) {
+        if (leaf)
+            for (i = t.begin; i < t.end; i++)
+                scalar += refs[i].scalar != 0.0f;
+        /* A node of scalar primitives may still gain by a split: each is a test of its own. */
+        if (size <= LEAF_MIN && (scalar == 0 || size == 1)) {
             leaf = 1;
         } else if (t.depth < SAH_DEPTH) {
             split_found = find_split(refs, &t, threads, &s);
@@ -682,9 +686,6 @@ static size_t build_nodes(struct bnode *nodes, struct ref *refs, const struct ta
             }
         }
         if (leaf) {
-            uint32_t i, scalar = 0;
-            for (i = t.begin; i < t.end; i++)
-                scalar += refs[i].scalar != 0.0f;
             node->index = t.begin;
             node->count = (uint16_t)size;
             node->scalar = (uint16_t)scalar;
