@@ -586,8 +586,9 @@ static float slot_half_area(const struct bvh_node *n, int i)
 }
 
 /* Depth, mean leaf size, and the SAH cost of the tree: expected (8-wide) node visits and 4-wide
- * leaf block tests (tri4.h) of a random ray that crosses the root box, without early exit (surface
- * area heuristic), comparable with Embree's "sah" statistics (inner / leaf) in the anchor. */
+ * leaf blocks (tri4.h) of a random ray that crosses the root box, without early exit (surface
+ * area heuristic), comparable with Embree's "sah" statistics (inner / leaf) in the anchor, which
+ * counts its Triangle4 blocks. (The AVX2 traversal tests a leaf's two blocks at once, bvh.c.) */
 struct tree_stats {
     int depth;
     double avg_leaf, sah_inner, sah_blocks;
@@ -1008,8 +1009,9 @@ int main(int argc, char **argv)
 #endif
     /* How to read the tables (make bench prints this first). */
     printf("How to read: 'build' rows give the tree (depth in 8-wide levels; SAH in / SAH bl:\n"
-           "expected 8-wide node visits / 4-triangle block tests of a random ray through the root\n"
-           "box, lower is better), its size (bytes/tri: nodes, triangle data, the 64-byte primitives),\n"
+           "expected 8-wide node visits / 4-triangle blocks of a random ray through the root box,\n"
+           "lower is better; a leaf of 5-8 triangles is two blocks, which the AVX2 traversal tests\n"
+           "at once), its size (bytes/tri: nodes, triangle data, the 64-byte primitives),\n"
            "the resident memory the build added at its peak and kept (peak/kept B/tri, from VmHWM\n"
            "and VmRSS; Embree's kept is its BVH, its triangles are outside) and the build time\n"
            "(CPU ms is the fair figure on a shared machine). 'trace' rows: Mrays/s/c = million\n"
