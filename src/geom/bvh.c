@@ -304,20 +304,6 @@ struct tri_result {
 #define V_CAST_FI(x) _mm_castsi128_ps(x)
 #define V_SIGN_FILL(x) _mm_castsi128_ps(_mm_srai_epi32(x, 31))
 #include "geom/tri_wide.h"
-#undef TRI_TEST
-#undef TRI_TARGET
-#undef TRI_LANES
-#undef VF
-#undef VI
-#undef VOP
-#undef V_LOAD
-#undef V_PRIM
-#undef V_EQ
-#undef V_GT
-#undef V_LT
-#undef V_UNORD
-#undef V_CAST_FI
-#undef V_SIGN_FILL
 #else
 /* The same decisions lane by lane, in portable C99. */
 static MC_ALWAYS_INLINE void tri4_test(const struct tri4 *k, const struct tri_ray *r,
@@ -391,20 +377,6 @@ static MC_ALWAYS_INLINE void tri4_test(const struct tri4 *k, const struct tri_ra
 #define V_CAST_FI(x) _mm256_castsi256_ps(x)
 #define V_SIGN_FILL(x) _mm256_castsi256_ps(_mm256_srai_epi32(x, 31))
 #include "geom/tri_wide.h"
-#undef TRI_TEST
-#undef TRI_TARGET
-#undef TRI_LANES
-#undef VF
-#undef VI
-#undef VOP
-#undef V_LOAD
-#undef V_PRIM
-#undef V_EQ
-#undef V_GT
-#undef V_LT
-#undef V_UNORD
-#undef V_CAST_FI
-#undef V_SIGN_FILL
 
 /* The 8-wide broadcasts, from the 4-wide ones (tri_ray_init's, made before). */
 static inline AVX_TARGET void tri_ray_init8(struct tri_ray *t)

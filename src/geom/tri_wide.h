@@ -1,11 +1,11 @@
-/* tri_wide.h: the SIMD watertight test of TRI_W triangles or quads, written once for both vector
- * widths. Private to src/geom/bvh.c, which includes it once per width with these defined (and
- * undefines them after; hence no include guard):
+/* tri_wide.h: the SIMD watertight test of 4 or 8 triangles or quads, written once for both vector
+ * widths. Private to src/geom/bvh.c, which includes it once per width with these defined (this
+ * file undefines them at its end, ready for the next width; hence no include guard):
  *   TRI_TEST     the function's name
  *   TRI_TARGET   its target attribute (empty, or AVX2's under run-time dispatch)
  *   TRI_LANES    the member of struct tri_ray with the ray's broadcasts at this width: o[3] (the
  *                origin in the permuted axis order kx, ky, kz) and the shear sx, sy, sz
- *   VF, VI       the float and the 32-bit integer vector of TRI_W lanes
+ *   VF, VI       the float and the 32-bit integer vector of the width
  *   VOP(op)      the intrinsic of op (add, sub, mul, div, max, and, or, xor, andnot, set1,
  *                setzero, movemask, storeu) at this width
  *   V_LOAD(k, vertex, axis)  lanes of that coordinate: block k's, or blocks k and k + 1's
@@ -15,7 +15,7 @@
  *                over the lane
  * Lane l of the result is lane l & 3 of block k + (l >> 2). */
 
-/* The watertight test of Woop, Benthin and Wald (prim.c's intersect_triangle) on TRI_W lanes:
+/* The watertight test of Woop, Benthin and Wald (prim.c's intersect_triangle) on all lanes at once:
  * the same float operations in the same order, so every lane it decides gets bitwise the scalar
  * answer. It leaves undecided the lanes where the scalar test would do more than this: an edge
  * function exactly 0 (recomputed in double there) and a NaN determinant (the NaN lanes of
@@ -105,3 +105,18 @@ static MC_ALWAYS_INLINE TRI_TARGET void TRI_TEST(const struct tri4 *k, const str
         VOP(storeu)(out->det, det);
     }
 }
+
+#undef TRI_TEST
+#undef TRI_TARGET
+#undef TRI_LANES
+#undef VF
+#undef VI
+#undef VOP
+#undef V_LOAD
+#undef V_PRIM
+#undef V_EQ
+#undef V_GT
+#undef V_LT
+#undef V_UNORD
+#undef V_CAST_FI
+#undef V_SIGN_FILL
