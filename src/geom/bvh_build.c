@@ -677,8 +677,9 @@ static size_t build_nodes(struct bnode *nodes, struct ref *refs, const struct ta
              * the size decides. */
             if (split_found && leaf) {
                 float area = box_half_area(&t.box);
-                uint32_t sl, sr;
-                scalar_sides(refs, &t, &s, &sl, &sr);
+                uint32_t sl = 0, sr = 0;
+                if (scalar) /* triangles and quads only, as most nodes: no sides to count */
+                    scalar_sides(refs, &t, &s, &sl, &sr);
                 leaf = leaf_cost(size, sl + sr) * area
                        <= COST_TRAVERSE * area + s.cost
                               + SCALAR_COST * (box_half_area(&s.left) * (float)sl
