@@ -265,6 +265,12 @@ static size_t make_scene(struct prim *prims, pcg32 *g)
     return n;
 }
 
+/* The index of primitive j of the leaf whose blocks start at block first. */
+static uint32_t leaf_prim(const struct bvh *b, uint32_t first, uint32_t j)
+{
+    return mc_tri4_prim(b->tri4[first + j / 4].prim[j % 4]);
+}
+
 /* Leaves of more than four primitives, which the AVX2 traversal tests eight lanes at a time
  * (two blocks), and how many of them hold a quad, or a sphere (a lane the SIMD test leaves to the
  * scalar one). */
@@ -284,7 +290,7 @@ static struct wide_leaves count_wide_leaves(const struct bvh *b, const struct pr
             if (nd->count[i] <= 4)
                 continue;
             for (j = 0; j < nd->count[i]; j++) {
-                uint32_t p = mc_tri4_prim(b->tri4[nd->child[i] + j / 4].prim[j % 4]);
+                uint32_t p = leaf_prim(b, nd->child[i], j);
                 quad |= prims[p].kind == PRIM_QUAD;
                 sphere |= prims[p].kind == PRIM_SPHERE;
             }
@@ -598,7 +604,7 @@ static void test_scalar_prims_apart(void)
             const struct bvh_node *nd = &b.nodes[k];
             uint32_t j, has_floor = 0, has_sphere = 0;
             for (j = 0; j < nd->count[i]; j++) {
-                uint32_t p = mc_tri4_prim(b.tri4[nd->child[i] + j / 4].prim[j % 4]);
+                uint32_t p = leaf_prim(&b, nd->child[i], j);
                 has_floor |= p == 0;
                 has_sphere |= prims[p].kind == PRIM_SPHERE;
             }
